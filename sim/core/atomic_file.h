@@ -1,0 +1,14 @@
+#pragma once
+// Outputs are written to a temporary file beside the target and renamed into place, so a crash or an
+// error never leaves a half-written file under the final name.
+#include <filesystem>
+#include <functional>
+#include <ostream>
+
+namespace spume {
+
+// Calls write(stream) on a temporary file next to `path`, flushes, then renames it over `path`.
+// Throws Error naming the path if anything fails; the temporary file is removed on failure.
+void write_file_atomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write);
+
+}  // namespace spume

@@ -1,0 +1,76 @@
+#include "frames.h"
+
+#include <algorithm>
+
+#include "error.h"
+
+namespace spume {
+
+const char* to_string(DiffuseType t) {
+  switch (t) {
+    case DiffuseType::Spray: return "spray";
+    case DiffuseType::Foam: return "foam";
+    case DiffuseType::Bubble: return "bubble";
+  }
+  return "unknown";
+}
+
+void FluidFrame::validate(const std::string& where) const {
+  const size_t n = positions.size();
+  if (!velocities.empty() && velocities.size() != n)
+    fail(where, ": ", velocities.size(), " velocities for ", n, " positions");
+  if (!ids.empty() && ids.size() != n) fail(where, ": ", ids.size(), " ids for ", n, " positions");
+  if (!masses.empty() && masses.size() != n) fail(where, ": ", masses.size(), " masses for ", n, " positions");
+  for (size_t i = 0; i < n; ++i) {
+    if (!finite(positions[i]))
+      fail(where, ": particle ", i, " (id ", id(i), ") has a non-finite position (", positions[i].transpose(),
+           "); positions must be finite numbers");
+    if (!velocities.empty() && !finite(velocities[i]))
+      fail(where, ": particle ", i, " (id ", id(i), ") has a non-finite velocity (", velocities[i].transpose(), ")");
+    if (!masses.empty() && !(std::isfinite(masses[i]) && masses[i] > 0.0f))
+      fail(where, ": particle ", i, " (id ", id(i), ") has mass ", masses[i], "; masses must be finite and > 0");
+  }
+  if (!ids.empty()) {
+    std::vector<uint32_t> sorted(ids);
+    std::sort(sorted.begin(), sorted.end());
+    const auto dup = std::adjacent_find(sorted.begin(), sorted.end());
+    if (dup != sorted.end()) fail(where, ": particle id ", *dup, " occurs more than once; ids must be unique");
+  }
+}
+
+void DiffuseFrame::resize(size_t n) {
+  ids.resize(n);
+  positions.resize(n);
+  velocities.resize(n);
+  lifetimes.resize(n);
+  types.resize(n);
+}
+
+void DiffuseFrame::reserve(size_t n) {
+  ids.reserve(n);
+  positions.reserve(n);
+  velocities.reserve(n);
+  lifetimes.reserve(n);
+  types.reserve(n);
+}
+
+std::array<size_t, kDiffuseTypeCount> DiffuseFrame::count_by_type() const {
+  std::array<size_t, kDiffuseTypeCount> counts{};
+  for (DiffuseType t : types) ++counts[size_t(t)];
+  return counts;
+}
+
+void DiffuseFrame::validate(const std::string& where) const {
+  const size_t n = positions.size();
+  if (ids.size() != n || velocities.size() != n || lifetimes.size() != n || types.size() != n)
+    fail(where, ": diffuse arrays disagree in length (positions ", n, ", ids ", ids.size(), ", velocities ",
+         velocities.size(), ", lifetimes ", lifetimes.size(), ", types ", types.size(), ")");
+  for (size_t i = 0; i < n; ++i) {
+    if (!finite(positions[i]) || !finite(velocities[i]) || !std::isfinite(lifetimes[i]))
+      fail(where, ": diffuse particle ", i, " (id ", ids[i], ") has a non-finite value");
+    if (uint8_t(types[i]) >= kDiffuseTypeCount)
+      fail(where, ": diffuse particle ", i, " has type ", int(types[i]), "; allowed 0 spray, 1 foam, 2 bubble");
+  }
+}
+
+}  // namespace spume

@@ -1,0 +1,243 @@
+#include "params.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "error.h"
+
+namespace spume {
+
+ParamReader::ParamReader(std::shared_ptr<ParamDocument> doc, std::string path)
+    : doc_(std::move(doc)), path_(std::move(path)) {}
+
+ParamReader ParamReader::from_json(Json root, std::string source) {
+  auto doc = std::make_shared<ParamDocument>();
+  doc->root = std::move(root);
+  doc->source = std::move(source);
+  if (!doc->root.is_object()) fail(doc->source, ": the scene must be a JSON object, found ", doc->root.type_name());
+  return ParamReader(doc, "");
+}
+
+const Json& ParamReader::object() const {
+  static const Json empty = Json::object();
+  if (path_.empty()) return doc_->root;
+  const Json::json_pointer pointer(path_);
+  if (!doc_->root.contains(pointer)) return empty;
+  const Json& node = doc_->root.at(pointer);
+  return node.is_object() ? node : empty;
+}
+
+const Json* ParamReader::find(const std::string& key) const {
+  doc_->asked.insert(path_of(key));
+  const Json& obj = object();
+  auto it = obj.find(key);
+  return it == obj.end() ? nullptr : &*it;
+}
+
+bool ParamReader::has(const std::string& key) const { return find(key) != nullptr; }
+
+void ParamReader::fail_at(const std::string& key, const std::string& message) const {
+  fail(doc_->source, ": ", path_of(key), ": ", message);
+}
+
+std::optional<double> ParamReader::optional_number(const std::string& key) const {
+  const Json* v = find(key);
+  if (!v) return std::nullopt;
+  if (!v->is_number()) fail_at(key, str("expected a number, found ", v->dump()));
+  const double d = v->get<double>();
+  if (!std::isfinite(d)) fail_at(key, str("expected a finite number, found ", d));
+  return d;
+}
+
+double ParamReader::number(const std::string& key, double fallback) const {
+  return optional_number(key).value_or(fallback);
+}
+
+double ParamReader::number_in(const std::string& key, double fallback, double lo, double hi) const {
+  const double v = number(key, fallback);
+  if (v < lo || v > hi) fail_at(key, str("value ", v, " is out of range; allowed [", lo, ", ", hi, "]"));
+  return v;
+}
+
+double ParamReader::positive(const std::string& key, double fallback) const {
+  const double v = number(key, fallback);
+  if (!(v > 0)) fail_at(key, str("value ", v, " must be > 0"));
+  return v;
+}
+
+double ParamReader::non_negative(const std::string& key, double fallback) const {
+  const double v = number(key, fallback);
+  if (!(v >= 0)) fail_at(key, str("value ", v, " must be >= 0"));
+  return v;
+}
+
+long ParamReader::integer_in(const std::string& key, long fallback, long lo, long hi) const {
+  const Json* v = find(key);
+  if (!v) return fallback;
+  if (!v->is_number_integer()) fail_at(key, str("expected a whole number, found ", v->dump()));
+  const long i = v->get<long>();
+  if (i < lo || i > hi) fail_at(key, str("value ", i, " is out of range; allowed ", lo, " to ", hi));
+  return i;
+}
+
+bool ParamReader::boolean(const std::string& key, bool fallback) const {
+  const Json* v = find(key);
+  if (!v) return fallback;
+  if (!v->is_boolean()) fail_at(key, str("expected true or false, found ", v->dump()));
+  return v->get<bool>();
+}
+
+std::optional<std::string> ParamReader::optional_text(const std::string& key) const {
+  const Json* v = find(key);
+  if (!v) return std::nullopt;
+  if (!v->is_string()) fail_at(key, str("expected a string, found ", v->dump()));
+  return v->get<std::string>();
+}
+
+std::string ParamReader::text(const std::string& key, const std::string& fallback) const {
+  return optional_text(key).value_or(fallback);
+}
+
+std::string ParamReader::choice(const std::string& key, const std::string& fallback,
+                                const std::vector<std::string>& allowed) const {
+  const std::string v = text(key, fallback);
+  if (std::find(allowed.begin(), allowed.end(), v) != allowed.end()) return v;
+  std::string list;
+  for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + ("\"" + a + "\"");
+  fail_at(key, str("\"", v, "\" is not a choice; allowed: ", list));
+}
+
+std::optional<Vec3f> ParamReader::optional_vec3(const std::string& key) const {
+  const Json* v = find(key);
+  if (!v) return std::nullopt;
+  if (!v->is_array() || v->size() != 3 || !std::all_of(v->begin(), v->end(), [](const Json& e) { return e.is_number(); }))
+    fail_at(key, str("expected [x, y, z] numbers, found ", v->dump()));
+  Vec3f out((*v)[0].get<float>(), (*v)[1].get<float>(), (*v)[2].get<float>());
+  if (!finite(out)) fail_at(key, str("expected finite numbers, found ", v->dump()));
+  return out;
+}
+
+Vec3f ParamReader::vec3(const std::string& key, const Vec3f& fallback) const {
+  return optional_vec3(key).value_or(fallback);
+}
+
+std::pair<double, double> ParamReader::range(const std::string& key, std::pair<double, double> fallback) const {
+  const Json* v = find(key);
+  if (!v) return fallback;
+  if (!v->is_array() || v->size() != 2 || !(*v)[0].is_number() || !(*v)[1].is_number())
+    fail_at(key, str("expected [min, max], found ", v->dump()));
+  const double lo = (*v)[0].get<double>(), hi = (*v)[1].get<double>();
+  if (!std::isfinite(lo) || !std::isfinite(hi)) fail_at(key, str("expected finite numbers, found ", v->dump()));
+  if (!(lo < hi)) fail_at(key, str("min ", lo, " must be below max ", hi, " (the clamp divides by max - min)"));
+  return {lo, hi};
+}
+
+ParamReader ParamReader::child(const std::string& key) const {
+  const Json* v = find(key);
+  if (v && !v->is_object()) fail_at(key, str("expected an object {...}, found ", v->dump()));
+  return ParamReader(doc_, path_of(key));
+}
+
+std::vector<ParamReader> ParamReader::array_of_objects(const std::string& key) const {
+  const Json* v = find(key);
+  std::vector<ParamReader> out;
+  if (!v) return out;
+  if (!v->is_array()) fail_at(key, str("expected an array [...], found ", v->type_name()));
+  for (size_t i = 0; i < v->size(); ++i) {
+    if (!(*v)[i].is_object()) fail_at(key, str("element ", i, " must be an object, found ", (*v)[i].dump()));
+    out.emplace_back(doc_, path_of(key) + "/" + std::to_string(i));
+  }
+  return out;
+}
+
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diag = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] != b[j - 1] ? 1 : 0)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+namespace {
+
+// Collect the paths of keys in `node` that nobody asked for (objects nobody asked for are reported
+// whole; array elements are reported when their parent array was asked for as an array of objects).
+void collect_unknown(const Json& node, const std::string& path, const std::set<std::string>& asked,
+                     std::vector<std::string>& unknown) {
+  if (node.is_object()) {
+    for (auto it = node.begin(); it != node.end(); ++it) {
+      const std::string p = path + "/" + it.key();
+      if (!asked.count(p)) {
+        unknown.push_back(p);
+        continue;
+      }
+      collect_unknown(*it, p, asked, unknown);
+    }
+  } else if (node.is_array()) {
+    for (size_t i = 0; i < node.size(); ++i)
+      if (node[i].is_object()) collect_unknown(node[i], path + "/" + std::to_string(i), asked, unknown);
+  }
+}
+
+std::string suggestion_for(const std::string& path, const std::set<std::string>& asked) {
+  const auto slash = path.rfind('/');
+  const std::string parent = path.substr(0, slash), key = path.substr(slash + 1);
+  std::string best;
+  size_t best_distance = SIZE_MAX;
+  for (const auto& a : asked) {
+    const auto s = a.rfind('/');
+    if (a.substr(0, s) != parent) continue;
+    const size_t d = edit_distance(key, a.substr(s + 1));
+    if (d < best_distance) best_distance = d, best = a.substr(s + 1);
+  }
+  if (best.empty() || best_distance > std::max<size_t>(3, key.size() / 2)) return "";
+  return str(" (did you mean \"", best, "\"?)");
+}
+
+}  // namespace
+
+void ParamReader::reject_unknown_keys() const {
+  std::vector<std::string> unknown;
+  collect_unknown(doc_->root, "", doc_->asked, unknown);
+  if (unknown.empty()) return;
+  std::string message = str(doc_->source, ": unknown key", unknown.size() > 1 ? "s" : "", ":");
+  for (const auto& u : unknown) message += str("\n  ", u, suggestion_for(u, doc_->asked));
+  fail(message);
+}
+
+void apply_override(Json& root, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    fail("--set ", assignment, ": expected key.path=value, e.g. --set diffuse.k_ta=2000");
+  const std::string path = assignment.substr(0, eq), text = assignment.substr(eq + 1);
+  Json value;
+  try {
+    value = Json::parse(text);
+  } catch (const Json::parse_error&) {
+    value = text;  // a bare word is a string
+  }
+  Json* node = &root;
+  size_t start = 0;
+  while (true) {
+    const auto dot = path.find('.', start);
+    const std::string key = path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    if (key.empty()) fail("--set ", assignment, ": empty key in path \"", path, "\"");
+    if (!node->is_object()) fail("--set ", assignment, ": \"", key, "\" is below a value that is not an object");
+    if (dot == std::string::npos) {
+      (*node)[key] = value;
+      return;
+    }
+    node = &(*node)[key];
+    if (node->is_null()) *node = Json::object();
+    start = dot + 1;
+  }
+}
+
+}  // namespace spume

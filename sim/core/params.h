@@ -1,0 +1,80 @@
+#pragma once
+// Reading a JSON scene into typed values. Every lookup is recorded, so that after all modules have
+// read their keys, any key nobody asked for is reported as an error with the closest known key
+// (a typo must never pass silently). Errors name the source file and the key path, e.g.
+// "wave.json: /diffuse/tau_ta: min 20 must be below max 5".
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "vec.h"
+
+namespace spume {
+
+using Json = nlohmann::json;
+
+// Shared by all readers of one document.
+struct ParamDocument {
+  std::string source;            // file name used in messages
+  Json root;
+  std::set<std::string> asked;   // every key path looked up, present or not
+};
+
+class ParamReader {
+ public:
+  // Reads the object at `path` ("" for the root) of the document.
+  ParamReader(std::shared_ptr<ParamDocument> doc, std::string path);
+
+  static ParamReader from_json(Json root, std::string source);
+
+  bool has(const std::string& key) const;
+  std::string path_of(const std::string& key) const { return path_ + "/" + key; }
+  const std::string& source() const { return doc_->source; }
+
+  // Typed getters: default when absent; an error naming the key for wrong types or ranges.
+  double number(const std::string& key, double fallback) const;
+  double number_in(const std::string& key, double fallback, double lo, double hi) const;  // lo <= v <= hi
+  double positive(const std::string& key, double fallback) const;                         // v > 0
+  double non_negative(const std::string& key, double fallback) const;                     // v >= 0
+  std::optional<double> optional_number(const std::string& key) const;
+  long integer_in(const std::string& key, long fallback, long lo, long hi) const;
+  bool boolean(const std::string& key, bool fallback) const;
+  std::string text(const std::string& key, const std::string& fallback) const;
+  std::optional<std::string> optional_text(const std::string& key) const;
+  std::string choice(const std::string& key, const std::string& fallback,
+                     const std::vector<std::string>& allowed) const;
+  Vec3f vec3(const std::string& key, const Vec3f& fallback) const;
+  std::optional<Vec3f> optional_vec3(const std::string& key) const;
+  // [min, max] with min < max (MODEL.md §8.1: equal thresholds would divide by zero).
+  std::pair<double, double> range(const std::string& key, std::pair<double, double> fallback) const;
+
+  ParamReader child(const std::string& key) const;           // {} when absent
+  std::vector<ParamReader> array_of_objects(const std::string& key) const;
+
+  // Fails with the message prefixed by the source file and this key's path.
+  [[noreturn]] void fail_at(const std::string& key, const std::string& message) const;
+
+  // After every module has read its keys: throws naming every key nobody asked for, with suggestions.
+  void reject_unknown_keys() const;
+
+ private:
+  const Json* find(const std::string& key) const;  // records the lookup
+  const Json& object() const;
+
+  std::shared_ptr<ParamDocument> doc_;
+  std::string path_;
+};
+
+// Apply a command-line override "a.b.c=value" to a JSON document: the value is parsed as JSON when
+// it parses (numbers, booleans, arrays), else taken as a string. Intermediate objects are created.
+void apply_override(Json& root, const std::string& assignment);
+
+// Levenshtein distance, for "did you mean" suggestions.
+size_t edit_distance(const std::string& a, const std::string& b);
+
+}  // namespace spume

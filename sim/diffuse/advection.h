@@ -1,0 +1,24 @@
+#pragma once
+// Classification (MODEL.md §3) and per-type advection (§4) of single diffuse particles: pure
+// functions, so each is testable against its closed form.
+#include "core/frames.h"
+#include "diffuse/params.h"
+
+namespace spume {
+
+// Type from the neighbour count: < spray_below -> spray, > bubble_above -> bubble, else foam. A
+// particle that already has a type keeps it unless the count passes the limit by the hysteresis.
+DiffuseType classify(float neighbour_count, const DiffuseParams& params, const DiffuseType* previous);
+
+// Spray under gravity over dt (Euler-Cromer as printed, or the exact parabola).
+void advance_spray(Vec3f& x, Vec3f& v, const Vec3f& gravity, float dt, SprayIntegrator integrator);
+
+// Foam moves with the fluid; its velocity becomes the fluid's (or stays as it was: Stale).
+void advance_foam(Vec3f& x, Vec3f& v, const Vec3f& fluid_velocity, float dt, FoamVelocity mode);
+
+// Bubble: buoyancy -k_b g and drag towards the fluid velocity. Paper: v += dt(-k_b g) + k_d (u - v),
+// x += dt v. Exponential: dv/dt = -k_b g + (u - v)/tau with tau = reference_step / k_d, integrated
+// exactly over dt (stable for any k_d; equals the paper's terminal speed at dt = reference_step).
+void advance_bubble(Vec3f& x, Vec3f& v, const Vec3f& fluid_velocity, const DiffuseParams& params, float dt);
+
+}  // namespace spume

@@ -1,0 +1,37 @@
+#pragma once
+// Turning potentials into new diffuse particles (MODEL.md §1 Eq. 8, §2, §5 lifetime, §8.3, §8.7).
+#include <cstdint>
+#include <vector>
+
+#include "core/rng.h"
+#include "diffuse/fluid_state.h"
+#include "diffuse/params.h"
+#include "diffuse/potentials.h"
+
+namespace spume {
+
+struct EmissionResult {
+  uint64_t requested = 0;  // particles the potentials asked for this step
+  uint64_t emitted = 0;    // particles appended (fewer when the budget binds)
+  bool budget_bound = false;
+};
+
+// Eq. 8 with stochastic rounding: floor(n_d) plus one with probability frac(n_d), so the expected
+// count equals n_d for any dt. At most kMaxSamplesPerStep per fluid particle and step.
+uint32_t round_emission(float expected, const RandomKey& key);
+
+// Lifetime from the generation potentials (MODEL.md §5): lifetime_min at zero potential, lifetime_max
+// at full potential, linear in P = I_k (k_ta I_ta + k_wc I_wc) / (k_ta + k_wc).
+float emission_lifetime(const DiffuseParams& params, float i_ta, float i_wc, float i_k);
+
+// Sample one particle in the cylinder of radius r_V around the fluid particle's path over dt (MODEL.md §2).
+void sample_cylinder(const Vec3f& x_f, const Vec3f& v_f, float dt, float radius, const std::array<float, 4>& u,
+                     Vec3f& x_d, Vec3f& v_d);
+
+// Appends this step's new particles to `out` (ids, positions, velocities, lifetimes; types are set by
+// the next classification). `step` is the global diffuse step; `existing` the particles alive now.
+EmissionResult emit_diffuse(const FluidStepState& state, const FormationPotentials& potentials,
+                            const DiffuseParams& params, uint32_t step, float dt, float particle_radius,
+                            DiffuseFrame& out);
+
+}  // namespace spume

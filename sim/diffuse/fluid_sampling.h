@@ -1,0 +1,25 @@
+#pragma once
+// What each diffuse particle needs from the fluid around it, in one pass: the fluid-neighbour count
+// within h (classification, MODEL.md §3) and the kernel-averaged fluid velocity (advection, §4).
+//
+// Diffuse particles are processed grouped by grid cell: each group gathers its 27 cells' fluid
+// particles once into a contiguous buffer, then every particle of the group scans that buffer.
+#include <span>
+#include <vector>
+
+#include "grid/neighbour_grid.h"
+
+namespace spume {
+
+struct FluidSamples {
+  std::vector<float> neighbour_count;  // fluid particles within h (before any solid share)
+  std::vector<Vec3f> fluid_velocity;   // sum_f v_f K / sum_f K; zero where the sum of K is zero
+  std::vector<float> kernel_sum;       // sum_f K (m^-3); zero means no fluid within h
+  std::vector<uint32_t> cell_order;    // diffuse indices sorted by cell: a spatially coherent order
+};
+
+// `sorted_motion[j]` is the advecting velocity of the grid's j-th sorted fluid particle.
+void sample_fluid(const NeighbourGrid& grid, std::span<const Vec3f> sorted_motion, std::span<const Vec3f> positions,
+                  FluidSamples& out);
+
+}  // namespace spume

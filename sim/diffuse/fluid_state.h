@@ -1,0 +1,35 @@
+#pragma once
+// The fluid as one diffuse step sees it: particles at time t, interpolated between two frames that
+// are matched by particle id (counts may change between frames).
+#include <cstdint>
+#include <vector>
+
+#include "core/frames.h"
+
+namespace spume {
+
+// Links frame k to frame k+1: for each particle of k, its index in k+1 or -1.
+struct FramePair {
+  const FluidFrame* current = nullptr;
+  const FluidFrame* next = nullptr;  // null at the last frame
+  std::vector<int32_t> next_index;
+  double frame_dt = 0.0;             // s between the two frames
+};
+
+FramePair pair_frames(const FluidFrame& current, const FluidFrame* next, double frame_dt);
+
+// Plain arrays for one step [t, t + dt].
+struct FluidStepState {
+  std::vector<Vec3f> positions;         // x_f(t), m
+  std::vector<Vec3f> velocities;        // v_f(t) for the potentials, m/s
+  std::vector<Vec3f> motion;            // (x_f(t+dt) - x_f(t)) / dt, the advecting velocity, m/s
+  std::vector<float> masses;            // kg
+  std::vector<uint32_t> ids;
+};
+
+// State at fraction s in [0, 1) of the interval between the pair's frames. Particles with no match in
+// the next frame move with their own velocity; without velocity attributes, velocities are frame
+// differences, and a particle with neither has zero velocity.
+void interpolate_fluid(const FramePair& pair, float s, float uniform_mass, FluidStepState& out);
+
+}  // namespace spume

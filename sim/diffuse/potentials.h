@@ -1,0 +1,30 @@
+#pragma once
+// Formation potentials of every fluid particle (MODEL.md §1): trapped air (Eq. 2), wave crest
+// (Eqs. 4-7) and kinetic energy, each clamped and scaled to [0, 1] by Eq. 1.
+#include <vector>
+
+#include "diffuse/fluid_state.h"
+#include "diffuse/params.h"
+#include "grid/neighbour_grid.h"
+
+namespace spume {
+
+struct FormationPotentials {
+  // Indexed like the fluid state (original particle order).
+  std::vector<Vec3f> normals;      // unit outward surface normal, zero for interior particles
+  std::vector<float> trapped_air;  // I_ta
+  std::vector<float> wave_crest;   // I_wc
+  std::vector<float> kinetic;      // I_k
+};
+
+// Surface normals from the colour-field gradient: grad c_i = sum_j V W'(r_ij) x_ij / r_ij with the
+// cubic spline of support h and the uniform particle volume V = (2r)^3; n_i = -grad c_i / |grad c_i|
+// where |grad c_i| h >= params.surface_threshold, else zero (interior: direction is noise).
+// `grid` must be built over state.positions with support radius h.
+void compute_normals(const NeighbourGrid& grid, const FluidStepState& state, float particle_volume,
+                     float surface_threshold, std::vector<Vec3f>& normals);
+
+void compute_potentials(const NeighbourGrid& grid, const FluidStepState& state, const DiffuseParams& params,
+                        float particle_volume, FormationPotentials& out);
+
+}  // namespace spume

@@ -1,0 +1,94 @@
+#include "neighbour_grid.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/parallel_sort.h>
+
+#include "core/error.h"
+#include "core/parallel.h"
+
+namespace spume {
+
+void NeighbourGrid::build(std::span<const Vec3f> points, float support_radius) {
+  if (!(support_radius > 0.0f) || !std::isfinite(support_radius))
+    fail("neighbour grid: support radius ", support_radius, " must be a finite number > 0");
+  support_radius_ = support_radius;
+  const size_t n = points.size();
+  sorted_points_.resize(n);
+  order_.resize(n);
+  if (n == 0) {
+    dims_ = {0, 0, 0};
+    cell_start_.assign(1, 0);
+    return;
+  }
+
+  // Bounding box, then the dense cell layout with one empty cell of margin on every side.
+  Aabb box;
+  for (const Vec3f& p : points) box.extend(p);
+  const Vec3d extent = (box.max - box.min).cast<double>();
+  const double max_cells = std::max(4.0e6, 4.0 * double(n));
+  double cell = support_radius;
+  auto cells_needed = [&](double c) {
+    return (std::floor(extent.x() / c) + 3) * (std::floor(extent.y() / c) + 3) * (std::floor(extent.z() / c) + 3);
+  };
+  while (cells_needed(cell) > max_cells) cell *= 1.25;
+  cell_ = float(cell);
+  origin_ = box.min - Vec3f::Constant(cell_);
+  for (int a = 0; a < 3; ++a) dims_[a] = int(std::floor(extent[a] / cell)) + 3;
+
+  // Sort (key, index) pairs packed in 64 bits: unique, so the parallel sort is deterministic.
+  std::vector<uint64_t> packed(n);
+  parallel_for(n, 4096, [&](size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) packed[i] = (uint64_t(key_of(points[i])) << 32) | uint32_t(i);
+  });
+  tbb::parallel_sort(packed.begin(), packed.end());
+
+  const uint32_t keys = key_count();
+  cell_start_.assign(size_t(keys) + 1, 0);
+  parallel_for(n, 4096, [&](size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) {
+      order_[i] = uint32_t(packed[i]);
+      sorted_points_[i] = points[order_[i]];
+    }
+  });
+  // cell_start[k] = number of points with key < k, filled by walking the sorted keys once.
+  uint32_t k = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const uint32_t key = uint32_t(packed[i] >> 32);
+    while (k <= key) cell_start_[k++] = uint32_t(i);
+  }
+  while (k <= keys) cell_start_[k++] = uint32_t(n);
+}
+
+uint32_t NeighbourGrid::key_of(const Vec3f& p) const {
+  if (sorted_points_.empty()) return kOutside;
+  int c[3];
+  for (int a = 0; a < 3; ++a) {
+    const float f = std::floor((p[a] - origin_[a]) / cell_);
+    if (!(f >= 0.0f) || f >= float(dims_[a])) return kOutside;  // also catches NaN
+    c[a] = int(f);
+  }
+  return (uint32_t(c[2]) * uint32_t(dims_[1]) + uint32_t(c[1])) * uint32_t(dims_[0]) + uint32_t(c[0]);
+}
+
+std::array<NeighbourGrid::Range, 9> NeighbourGrid::block_ranges(uint32_t key) const {
+  const uint32_t nx = uint32_t(dims_[0]), ny = uint32_t(dims_[1]), nz = uint32_t(dims_[2]);
+  const uint32_t cx = key % nx, cy = (key / nx) % ny, cz = key / (nx * ny);
+  const uint32_t x0 = cx > 0 ? cx - 1 : 0, x1 = std::min(cx + 1, nx - 1);
+  std::array<Range, 9> ranges;
+  int r = 0;
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy) {
+      const int64_t y = int64_t(cy) + dy, z = int64_t(cz) + dz;
+      if (y < 0 || z < 0 || y >= ny || z >= nz) {
+        ranges[r++] = {0, 0};
+        continue;
+      }
+      const uint32_t row = (uint32_t(z) * ny + uint32_t(y)) * nx;
+      ranges[r++] = {cell_start_[row + x0], cell_start_[row + x1 + 1]};
+    }
+  return ranges;
+}
+
+}  // namespace spume
