@@ -1,2 +1,48 @@
+// spume: spray, foam and bubbles for particle fluids (Ihmsen et al. 2012), simulated and rendered.
 #include <cstdio>
-int main() { return 0; }
+#include <cstring>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "commands.h"
+#include "core/error.h"
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: spume COMMAND [options]\n"
+    "commands:\n"
+    "  simulate SCENE    fluid frames -> diffuse caches (spray, foam, bubbles)\n"
+    "  info FILE...      what a particle file or cache holds\n"
+    "run 'spume COMMAND' without arguments for its options.\n";
+
+struct Command {
+  const char* name;
+  int (*run)(const std::vector<std::string>&);
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Command commands[] = {{"simulate", spume::command_simulate}, {"info", spume::command_info}};
+  if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
+    std::fputs(kUsage, argc < 2 ? stderr : stdout);
+    return argc < 2 ? 2 : 0;
+  }
+  const std::vector<std::string> args(argv + 2, argv + argc);
+  for (const Command& c : commands) {
+    if (std::strcmp(argv[1], c.name) != 0) continue;
+    try {
+      return c.run(args);
+    } catch (const spume::Error& e) {
+      std::fprintf(stderr, "spume %s: error: %s\n", c.name, e.what());
+      return 1;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "spume %s: internal error: %s\n", c.name, e.what());
+      return 3;
+    }
+  }
+  std::fprintf(stderr, "spume: unknown command \"%s\"\n%s", argv[1], kUsage);
+  return 2;
+}

@@ -27,6 +27,10 @@ struct DiffuseParams {
   // A fluid particle is a surface particle when |grad c| * h reaches this; below it its normal is
   // undefined and it contributes no crest potential (MODEL.md §8.10).
   float surface_threshold = 0.3f;
+  // ... and has fewer neighbours within h than this fraction of a full neighbourhood (4/3 pi h^3 / V).
+  // The gradient alone is not enough: in a disordered fluid its noise inside reaches half the value
+  // at the surface, while the neighbour count drops by a quarter only in the outermost layer.
+  float surface_neighbour_fraction = 0.75f;
 
   // Classification (MODEL.md §3), on the fluid-neighbour count within h (plus the solids' share).
   float spray_below = 6.0f;    // fewer neighbours -> spray

@@ -1,29 +1,36 @@
 #include "potentials.h"
 
+#include <numbers>
+
 #include "core/parallel.h"
 #include "diffuse/kernels.h"
 
 namespace spume {
 
-void compute_normals(const NeighbourGrid& grid, const FluidStepState& state, float particle_volume,
-                     float surface_threshold, std::vector<Vec3f>& normals) {
+void compute_normals(const NeighbourGrid& grid, float particle_volume, const DiffuseParams& params,
+                     std::vector<Vec3f>& normals) {
   const float h = grid.support_radius();
   const CubicSpline kernel(h);
   const auto points = grid.sorted_points();
   const auto order = grid.sorted_to_original();
-  normals.assign(state.positions.size(), Vec3f::Zero());
+  const float full = 4.0f / 3.0f * std::numbers::pi_v<float> * h * h * h / particle_volume;
+  const float max_neighbours = params.surface_neighbour_fraction * full;
+  normals.assign(points.size(), Vec3f::Zero());
   parallel_for(points.size(), 1024, [&](size_t b, size_t e) {
     for (size_t si = b; si < e; ++si) {
       const Vec3f xi = points[si];
       Vec3f gradient = Vec3f::Zero();
+      int neighbours = 0;
       grid.for_each_neighbour(xi, h, [&](uint32_t sj, float d2) {
+        ++neighbours;
         if (d2 <= 0.0f) return;  // itself, or a coincident particle: no direction (MODEL.md §8.2)
         const float r = std::sqrt(d2);
         gradient += (kernel.derivative(r) / r) * (xi - points[sj]);
       });
       gradient *= particle_volume;
       const float magnitude = gradient.norm();
-      if (magnitude * h >= surface_threshold && magnitude > 0.0f) normals[order[si]] = -gradient / magnitude;
+      if (magnitude * h >= params.surface_threshold && magnitude > 0.0f && float(neighbours) < max_neighbours)
+        normals[order[si]] = -gradient / magnitude;
     }
   });
 }
@@ -31,7 +38,7 @@ void compute_normals(const NeighbourGrid& grid, const FluidStepState& state, flo
 void compute_potentials(const NeighbourGrid& grid, const FluidStepState& state, const DiffuseParams& params,
                         float particle_volume, FormationPotentials& out) {
   const size_t n = state.positions.size();
-  compute_normals(grid, state, particle_volume, params.surface_threshold, out.normals);
+  compute_normals(grid, particle_volume, params, out.normals);
   out.trapped_air.assign(n, 0.0f);
   out.wave_crest.assign(n, 0.0f);
   out.kinetic.assign(n, 0.0f);

@@ -19,10 +19,11 @@ struct FormationPotentials {
 
 // Surface normals from the colour-field gradient: grad c_i = sum_j V W'(r_ij) x_ij / r_ij with the
 // cubic spline of support h and the uniform particle volume V = (2r)^3; n_i = -grad c_i / |grad c_i|
-// where |grad c_i| h >= params.surface_threshold, else zero (interior: direction is noise).
+// for surface particles (|grad c_i| h >= surface_threshold and fewer than surface_neighbour_fraction
+// of a full neighbourhood within h), else zero: inside, the direction is noise (MODEL.md §8.10).
 // `grid` must be built over state.positions with support radius h.
-void compute_normals(const NeighbourGrid& grid, const FluidStepState& state, float particle_volume,
-                     float surface_threshold, std::vector<Vec3f>& normals);
+void compute_normals(const NeighbourGrid& grid, float particle_volume, const DiffuseParams& params,
+                     std::vector<Vec3f>& normals);
 
 void compute_potentials(const NeighbourGrid& grid, const FluidStepState& state, const DiffuseParams& params,
                         float particle_volume, FormationPotentials& out);

@@ -1,0 +1,11 @@
+#pragma once
+#include <string>
+#include <vector>
+
+namespace spume {
+
+// Each returns the process exit status; errors are thrown as spume::Error and reported by main.
+int command_simulate(const std::vector<std::string>& args);
+int command_info(const std::vector<std::string>& args);
+
+}  // namespace spume

@@ -1,0 +1,65 @@
+#include "progress.h"
+
+#include <cstdio>
+#include <unistd.h>
+
+#include "error.h"
+
+namespace spume {
+
+std::string format_duration(double seconds) {
+  char buffer[32];
+  if (seconds < 60) std::snprintf(buffer, sizeof buffer, "%.1fs", seconds);
+  else if (seconds < 3600) std::snprintf(buffer, sizeof buffer, "%dm%02ds", int(seconds) / 60, int(seconds) % 60);
+  else std::snprintf(buffer, sizeof buffer, "%dh%02dm", int(seconds) / 3600, (int(seconds) / 60) % 60);
+  return buffer;
+}
+
+Progress::Progress(std::string label, size_t total, bool quiet)
+    : label_(std::move(label)), total_(total), quiet_(quiet), terminal_(::isatty(2) == 1),
+      start_(std::chrono::steady_clock::now()), last_print_(start_ - std::chrono::hours(1)) {}
+
+Progress::~Progress() {
+  if (open_line_) std::fputc('\n', stderr);
+}
+
+void Progress::update(size_t done, const std::string& note) {
+  if (quiet_) return;
+  const auto now = std::chrono::steady_clock::now();
+  // Off a terminal, print at most every 2 s (and always the last item) to keep logs short.
+  if (!terminal_ && done < total_ && now - last_print_ < std::chrono::seconds(2)) return;
+  last_print_ = now;
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  const double rate = elapsed > 0 ? double(done) / elapsed : 0.0;
+  std::string line = str(label_, ": frame ", done, "/", total_);
+  if (done > 0) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "  %.2f frames/s", rate);
+    line += buffer;
+    line += "  eta " + format_duration(rate > 0 ? double(total_ - done) / rate : 0.0);
+  }
+  if (!note.empty()) line += "  " + note;
+  if (terminal_) {
+    std::fprintf(stderr, "\r\033[K%s", line.c_str());
+    open_line_ = true;
+  } else {
+    std::fprintf(stderr, "%s\n", line.c_str());
+  }
+  std::fflush(stderr);
+}
+
+void Progress::finish(const std::string& note) {
+  if (quiet_) return;
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  if (open_line_) std::fputc('\n', stderr), open_line_ = false;
+  std::fprintf(stderr, "%s: %zu frames in %s%s%s\n", label_.c_str(), total_, format_duration(elapsed).c_str(),
+               note.empty() ? "" : "  ", note.c_str());
+}
+
+void Progress::message(const std::string& line) {
+  if (quiet_) return;
+  if (open_line_) std::fputc('\n', stderr), open_line_ = false;
+  std::fprintf(stderr, "%s\n", line.c_str());
+}
+
+}  // namespace spume

@@ -1,0 +1,39 @@
+#pragma once
+// The simulation half of a scene file, validated into plain values. The render half is read by
+// render/; whoever loads the file calls ParamReader::reject_unknown_keys() after both.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <utility>
+
+#include "core/frames.h"
+#include "core/params.h"
+#include "diffuse/params.h"
+#include "scene/solids.h"
+
+namespace spume {
+
+enum class FluidSourceKind { Files, Solver };
+
+struct SimScene {
+  std::string name;                     // output folder name: OUT/<name>/
+  FluidSourceKind source = FluidSourceKind::Files;
+  std::string file_pattern;             // Files: resolved against the scene file's folder
+  FluidSequenceInfo fluid;
+  std::optional<std::pair<int, int>> frames;  // inclusive frame range to use, if limited
+  Vec3f gravity = Vec3f(0.0f, -9.81f, 0.0f);  // m/s^2
+  SolidSet solids;
+  Aabb domain;                          // empty: derived from the tank or the first fluid frame
+  DiffuseParams diffuse;
+  bool write_bgeo = false;              // also write diffuse frames as BGEO for Houdini/Blender
+};
+
+// `scene_dir` resolves relative file paths; `default_name` is used when the scene has no "name".
+SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& scene_dir,
+                        const std::string& default_name);
+
+// The domain used when the scene gives none: the tank (open top raised by its height) if there is
+// one, else the first frame's fluid bounds grown by their extent on every side.
+Aabb default_domain(const SimScene& scene, const FluidFrame& first);
+
+}  // namespace spume

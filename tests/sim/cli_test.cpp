@@ -1,0 +1,189 @@
+// The spume command on good and bad input: clear errors naming the key or file, the value and what
+// is allowed; non-zero exit; nothing half-written.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "io/bgeo.h"
+#include "io/spume_cache.h"
+#include "test_fluids.h"
+
+namespace spume {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int status = -1;
+  std::string output;  // stdout and stderr
+};
+
+Result run_spume(const std::string& arguments) {
+  const std::string command = std::string(SPUME_BINARY) + " " + arguments + " 2>&1";
+  Result r;
+  FILE* pipe = popen(command.c_str(), "r");
+  std::array<char, 4096> buffer;
+  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) r.output.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+class SpumeCommand : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir = fs::temp_directory_path() / ("spume_cli_" + std::to_string(::getpid()) + "_" +
+                                       ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir);
+    fs::create_directories(dir / "cache");
+    // Three frames of two blocks closing in (gap 0.02 m at frame 1, overlapping after), as SPlisHSPlasH-style BGEO files numbered from 1.
+    for (int k = 1; k <= 3; ++k) {
+      auto a = testing::lattice(Vec3f(0, 0, 0), Vec3f(0.2f, 0.2f, 0.2f), 0.04f);
+      std::vector<Vec3f> x, v;
+      for (const Vec3f& p : a) {
+        x.push_back(p + Vec3f(0.04f * k, 0, 0)), v.push_back(Vec3f(2, 0, 0));
+        x.push_back(p + Vec3f(0.3f - 0.04f * k, 0, 0)), v.push_back(Vec3f(-2, 0, 0));
+      }
+      write_bgeo(dir / "cache" / ("ParticleData_Fluid_" + std::to_string(k) + ".bgeo"), testing::frame_of(k, 0, x, v));
+    }
+  }
+  void TearDown() override { fs::remove_all(dir); }
+
+  void write_scene(const std::string& json) { std::ofstream(dir / "scene.json") << json; }
+  std::string scene() const { return (dir / "scene.json").string(); }
+  std::string out() const { return (dir / "out").string(); }
+  bool wrote_anything() const { return fs::exists(dir / "out"); }
+
+  fs::path dir;
+};
+
+TEST_F(SpumeCommand, PostProcessesBgeoFilesWithNoSceneFile) {
+  const Result r = run_spume("simulate --quiet --fluid '" + (dir / "cache/ParticleData_Fluid_%d.bgeo").string() +
+                             "' --radius 0.02 --out " + out());
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (int k = 1; k <= 3; ++k) {
+    char name[64];
+    std::snprintf(name, sizeof name, "diffuse_%04d.spd", k);
+    const DiffuseFrame f = read_diffuse_cache(dir / "out/ParticleData_Fluid/diffuse" / name);
+    EXPECT_EQ(f.index, k);
+    if (k == 1) {
+      EXPECT_EQ(f.size(), 0u);  // diffuse material starts empty
+    }
+  }
+  EXPECT_GT(read_diffuse_cache(dir / "out/ParticleData_Fluid/diffuse/diffuse_0003.spd").size(), 0u);
+  std::ifstream stats(dir / "out/ParticleData_Fluid/stats.csv");
+  std::string header;
+  std::getline(stats, header);
+  EXPECT_EQ(header.rfind("frame,time,fluid,spray,foam,bubbles,generated,dissolved", 0), 0u) << header;
+  EXPECT_EQ(run_spume("info " + (dir / "out/ParticleData_Fluid/diffuse/diffuse_0003.spd").string()).status, 0);
+}
+
+TEST_F(SpumeCommand, UnknownSceneKeySuggestsTheClosest) {
+  write_scene(R"({"fluid": {"files": "cache/ParticleData_Fluid_%d.bgeo", "radius": 0.02},
+                  "diffuse": {"tau_taa": [1, 2]}})");
+  const Result r = run_spume("simulate " + scene() + " --out " + out());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("/diffuse/tau_taa"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("did you mean \"tau_ta\""), std::string::npos) << r.output;
+  EXPECT_FALSE(wrote_anything());
+}
+
+struct BadScene {
+  const char* diffuse;   // the `diffuse` object
+  const char* expected;  // in the message
+};
+
+TEST_F(SpumeCommand, BadParametersAreRejectedNamingKeyValueAndAllowed) {
+  const BadScene cases[] = {
+      {R"({"tau_ta": [5, 5]})", "/diffuse/tau_ta: min 5 must be below max 5"},
+      {R"({"tau_wc": [8, 2]})", "/diffuse/tau_wc: min 8 must be below max 2"},
+      {R"({"k_ta": -3})", "/diffuse/k_ta: value -3 must be >= 0"},
+      {R"({"bubble_drag": "paper", "drag": 1.5})", "/diffuse/drag: value 1.5 is out of range; allowed [0, 1]"},
+      {R"({"spray_integrator": "rk4"})", "\"rk4\" is not a choice; allowed: \"exact\", \"euler_cromer\""},
+      {R"({"substeps": 0})", "/diffuse/substeps: value 0 is out of range; allowed 1 to 64"},
+      {R"({"tau_k": "high"})", "/diffuse/tau_k: expected [min, max]"},
+  };
+  for (const auto& c : cases) {
+    write_scene(std::string(R"({"fluid": {"files": "cache/ParticleData_Fluid_%d.bgeo", "radius": 0.02}, "diffuse": )") +
+                c.diffuse + "}");
+    const Result r = run_spume("simulate " + scene() + " --out " + out());
+    EXPECT_EQ(r.status, 1) << c.diffuse;
+    EXPECT_NE(r.output.find(c.expected), std::string::npos) << c.diffuse << "\n" << r.output;
+    EXPECT_NE(r.output.find("scene.json"), std::string::npos) << r.output;
+    EXPECT_FALSE(wrote_anything()) << c.diffuse;
+  }
+}
+
+TEST_F(SpumeCommand, BadFluidSettingsAreRejected) {
+  const std::pair<const char*, const char*> cases[] = {
+      {R"({"files": "cache/ParticleData_Fluid_%d.bgeo", "radius": 0})", "/fluid/radius: value 0 must be > 0"},
+      {R"({"files": "cache/ParticleData_Fluid_%d.bgeo", "radius": 0.02, "support_radius": -1})",
+       "/fluid/support_radius: value -1 must be > 0"},
+      {R"({"files": "cache/ParticleData_Fluid_%d.bgeo"})", "/fluid/radius: missing"},
+      {R"({"files": "cache/Nothing_%d.bgeo", "radius": 0.02})", "Nothing_%d.bgeo: no files match"},
+  };
+  for (const auto& [fluid, expected] : cases) {
+    write_scene(std::string(R"({"fluid": )") + fluid + "}");
+    const Result r = run_spume("simulate " + scene() + " --out " + out());
+    EXPECT_EQ(r.status, 1) << fluid;
+    EXPECT_NE(r.output.find(expected), std::string::npos) << fluid << "\n" << r.output;
+    EXPECT_FALSE(wrote_anything());
+  }
+}
+
+TEST_F(SpumeCommand, CorruptOrNaNFluidFileIsNamedAndStopsTheRun) {
+  // Frame 2 truncated: frame 1's classification is written, then the run stops naming the file.
+  const fs::path bad = dir / "cache/ParticleData_Fluid_2.bgeo";
+  fs::resize_file(bad, fs::file_size(bad) / 2);
+  write_scene(R"({"fluid": {"files": "cache/ParticleData_Fluid_%d.bgeo", "radius": 0.02}})");
+  Result r = run_spume("simulate --quiet " + scene() + " --out " + out());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("ParticleData_Fluid_2.bgeo"), std::string::npos) << r.output;
+  for (const auto& entry : fs::recursive_directory_iterator(dir / "out"))
+    EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();  // nothing half-written
+
+}
+
+// Hand-written ASCII PLY frames: the second has `second_frame_body` as its vertices.
+void write_ply_pair(const fs::path& dir, int second_count, const std::string& second_body) {
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex ";
+  const std::string props = "\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
+  std::ofstream(dir / "p_1.ply") << header << 2 << props << "0 0 0\n0.01 0 0\n";
+  std::ofstream(dir / "p_2.ply") << header << second_count << props << second_body;
+}
+
+TEST_F(SpumeCommand, NaNPositionIsRejectedNamingTheParticle) {
+  write_ply_pair(dir, 2, "0 0 0\nnan 0 0\n");
+  const Result r = run_spume("simulate --quiet --fluid '" + (dir / "p_%d.ply").string() + "' --radius 0.01 --out " + out());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("p_2.ply"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("particle 1"), std::string::npos) << r.output;
+}
+
+TEST_F(SpumeCommand, EmptyFrameIsRejectedNamingTheFile) {
+  write_ply_pair(dir, 0, "");
+  const Result r = run_spume("simulate --quiet --fluid '" + (dir / "p_%d.ply").string() + "' --radius 0.01 --out " + out());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("p_2.ply: holds no fluid particles"), std::string::npos) << r.output;
+}
+
+TEST_F(SpumeCommand, UsageErrorsExitNonZeroWithHelp) {
+  EXPECT_EQ(run_spume("").status, 2);
+  EXPECT_EQ(run_spume("frobnicate").status, 2);
+  Result r = run_spume("simulate --thread 2 x.json");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("did you mean --threads"), std::string::npos) << r.output;
+  r = run_spume("simulate " + (dir / "missing.json").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("missing.json: cannot open the scene file (no such file)"), std::string::npos) << r.output;
+  write_scene("{\"fluid\": {,}");
+  r = run_spume("simulate " + scene());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("scene.json:1: not valid JSON"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace spume

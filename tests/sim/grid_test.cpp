@@ -1,0 +1,85 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+#include "core/parallel.h"
+#include "grid/neighbour_grid.h"
+#include "grid/radix_sort.h"
+
+namespace spume {
+namespace {
+
+std::vector<Vec3f> random_points(size_t n, float extent, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-extent, extent);
+  std::vector<Vec3f> p(n);
+  for (auto& x : p) x = Vec3f(u(rng), u(rng), u(rng));
+  return p;
+}
+
+// Brute force over all pairs is the independent reference.
+TEST(NeighbourGrid, FindsExactlyThePointsWithinTheRadius) {
+  const auto points = random_points(3000, 1.0f, 1);
+  NeighbourGrid grid;
+  grid.build(points, 0.15f);
+  const auto queries = random_points(300, 1.3f, 2);  // some outside the points' box
+  for (const Vec3f& q : queries) {
+    for (float radius : {0.15f, 0.07f}) {
+      std::vector<uint32_t> expected, found;
+      for (uint32_t i = 0; i < points.size(); ++i)
+        if ((points[i] - q).squaredNorm() <= radius * radius) expected.push_back(i);
+      grid.for_each_neighbour(q, radius, [&](uint32_t sj, float) { found.push_back(grid.sorted_to_original()[sj]); });
+      std::sort(found.begin(), found.end());
+      ASSERT_EQ(found, expected);
+    }
+  }
+}
+
+TEST(NeighbourGrid, SortedOrderIsAPermutationAndIndependentOfThreadCount) {
+  const auto points = random_points(20000, 2.0f, 3);
+  set_thread_count(1);
+  NeighbourGrid one;
+  one.build(points, 0.2f);
+  set_thread_count(2);
+  NeighbourGrid two;
+  two.build(points, 0.2f);
+  set_thread_count(0);
+  std::vector<uint32_t> order(one.sorted_to_original().begin(), one.sorted_to_original().end());
+  EXPECT_TRUE(std::equal(order.begin(), order.end(), two.sorted_to_original().begin()));
+  std::sort(order.begin(), order.end());
+  for (uint32_t i = 0; i < order.size(); ++i) ASSERT_EQ(order[i], i);
+}
+
+TEST(NeighbourGrid, FarOutlierKeepsQueriesExactWithACoarserGrid) {
+  auto points = random_points(500, 0.5f, 4);
+  points.push_back(Vec3f(1e5f, 0.0f, 0.0f));  // would need 1e18 cells at h = 0.05
+  NeighbourGrid grid;
+  grid.build(points, 0.05f);
+  EXPECT_GE(grid.cell_size(), 0.05f);
+  int found = 0;
+  grid.for_each_neighbour(Vec3f(1e5f, 0.01f, 0.0f), 0.05f, [&](uint32_t, float) { ++found; });
+  EXPECT_EQ(found, 1);
+}
+
+TEST(NeighbourGrid, EmptyGridHasNoNeighbours) {
+  NeighbourGrid grid;
+  grid.build({}, 1.0f);
+  EXPECT_EQ(grid.key_of(Vec3f::Zero()), NeighbourGrid::kOutside);
+}
+
+TEST(RadixSort, IsAStableSortByKey) {
+  std::mt19937 rng(5);
+  std::vector<uint32_t> keys(100000);
+  for (auto& k : keys) k = rng() % 5000;
+  const auto order = radix_sort_indices(keys, 13);
+  for (size_t i = 1; i < order.size(); ++i) {
+    ASSERT_LE(keys[order[i - 1]], keys[order[i]]);
+    if (keys[order[i - 1]] == keys[order[i]]) {
+      ASSERT_LT(order[i - 1], order[i]);  // stable
+    }
+  }
+}
+
+}  // namespace
+}  // namespace spume
