@@ -1,9 +1,9 @@
 #include "fluid_sampling.h"
 
+#include <algorithm>
 #include <bit>
 
 #include "core/parallel.h"
-#include "diffuse/kernels.h"
 #include "grid/radix_sort.h"
 
 namespace spume {
@@ -54,26 +54,29 @@ void sample_fluid(const NeighbourGrid& grid, std::span<const Vec3f> sorted_motio
   while (inside_end < n && keys[out.cell_order[inside_end]] != outside) ++inside_end;
   group_start.push_back(uint32_t(inside_end));
 
-  const float h = grid.support_radius(), h2 = h * h;
-  const CubicSpline kernel(h);
+  const float h = grid.support_radius(), inv_h2 = 1.0f / (h * h);
   parallel_for(group_start.size() - 1, 8, [&](size_t gb, size_t ge) {
     CandidateBuffer buffer;
     for (size_t g = gb; g < ge; ++g) {
       const uint32_t first = group_start[g], last = group_start[g + 1];
       buffer.gather(grid, sorted_motion, keys[out.cell_order[first]]);
       const size_t m = buffer.x.size();
+      const float *bx = buffer.x.data(), *by = buffer.y.data(), *bz = buffer.z.data();
+      const float *bvx = buffer.vx.data(), *bvy = buffer.vy.data(), *bvz = buffer.vz.data();
       for (uint32_t s = first; s < last; ++s) {
         const uint32_t i = out.cell_order[s];
-        const Vec3f p = positions[i];
+        const float px = positions[i].x(), py = positions[i].y(), pz = positions[i].z();
+        // Branch-free so the compiler vectorises it: candidates beyond h contribute zero.
         float count = 0.0f, wsum = 0.0f, wx = 0.0f, wy = 0.0f, wz = 0.0f;
         for (size_t j = 0; j < m; ++j) {
-          const float dx = buffer.x[j] - p.x(), dy = buffer.y[j] - p.y(), dz = buffer.z[j] - p.z();
-          const float d2 = dx * dx + dy * dy + dz * dz;
-          if (d2 > h2) continue;
-          const float w = kernel.value(std::sqrt(d2));
-          count += 1.0f;
+          const float dx = bx[j] - px, dy = by[j] - py, dz = bz[j] - pz;
+          const float q2 = (dx * dx + dy * dy + dz * dz) * inv_h2;
+          const float inside = q2 <= 1.0f ? 1.0f : 0.0f;
+          const float t = std::max(1.0f - q2, 0.0f);
+          const float w = t * t * t;  // poly6 shape (1 - r^2/h^2)^3; its constant cancels in the ratio
+          count += inside;
           wsum += w;
-          wx += w * buffer.vx[j], wy += w * buffer.vy[j], wz += w * buffer.vz[j];
+          wx += w * bvx[j], wy += w * bvy[j], wz += w * bvz[j];
         }
         out.neighbour_count[i] = count;
         out.kernel_sum[i] = wsum;

@@ -2,6 +2,8 @@
 // What each diffuse particle needs from the fluid around it, in one pass: the fluid-neighbour count
 // within h (classification, MODEL.md §3) and the kernel-averaged fluid velocity (advection, §4).
 //
+// The velocity average uses the poly6 kernel shape (Mueller et al. 2003): MODEL.md §4 asks for any
+// normalised symmetric kernel, the normalisation cancels in the ratio, and poly6 needs no square root.
 // Diffuse particles are processed grouped by grid cell: each group gathers its 27 cells' fluid
 // particles once into a contiguous buffer, then every particle of the group scans that buffer.
 #include <span>
@@ -14,7 +16,7 @@ namespace spume {
 struct FluidSamples {
   std::vector<float> neighbour_count;  // fluid particles within h (before any solid share)
   std::vector<Vec3f> fluid_velocity;   // sum_f v_f K / sum_f K; zero where the sum of K is zero
-  std::vector<float> kernel_sum;       // sum_f K (m^-3); zero means no fluid within h
+  std::vector<float> kernel_sum;       // sum_f K with K = (1 - r^2/h^2)^3 unnormalised; zero: no fluid within h
   std::vector<uint32_t> cell_order;    // diffuse indices sorted by cell: a spatially coherent order
 };
 

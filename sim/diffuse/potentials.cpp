@@ -38,7 +38,8 @@ void compute_normals(const NeighbourGrid& grid, float particle_volume, const Dif
 void compute_potentials(const NeighbourGrid& grid, const FluidStepState& state, const DiffuseParams& params,
                         float particle_volume, FormationPotentials& out) {
   const size_t n = state.positions.size();
-  compute_normals(grid, particle_volume, params, out.normals);
+  if (params.k_wc > 0.0f) compute_normals(grid, particle_volume, params, out.normals);
+  else out.normals.assign(n, Vec3f::Zero());  // no crest emission: no normals needed
   out.trapped_air.assign(n, 0.0f);
   out.wave_crest.assign(n, 0.0f);
   out.kinetic.assign(n, 0.0f);
@@ -50,6 +51,10 @@ void compute_potentials(const NeighbourGrid& grid, const FluidStepState& state, 
     for (size_t si = b; si < e; ++si) {
       const uint32_t i = order[si];
       const Vec3f xi = points[si], vi = state.velocities[i], ni = out.normals[i];
+      const float speed = vi.norm();
+      const float energy = 0.5f * state.masses[i] * speed * speed;
+      out.kinetic[i] = clamp_and_scale(energy, params.kinetic.lo, params.kinetic.hi);
+      if (out.kinetic[i] <= 0.0f) continue;  // Eq. 8 multiplies by I_k: too slow to emit, skip the sums
       const bool surface = ni.squaredNorm() > 0.0f;
       float v_diff = 0.0f, curvature = 0.0f;
       grid.for_each_neighbour(xi, h, [&](uint32_t sj, float d2) {
@@ -66,12 +71,9 @@ void compute_potentials(const NeighbourGrid& grid, const FluidStepState& state, 
         if (surface && nj.squaredNorm() > 0.0f && x_ij.dot(ni) > 0.0f) curvature += (1.0f - ni.dot(nj)) * w;
       });
       // Eq. 7: only particles moving along their normal form crests.
-      const float speed = vi.norm();
       const bool moving_out = surface && speed > 0.0f && vi.dot(ni) >= 0.6f * speed;
       out.trapped_air[i] = clamp_and_scale(v_diff, params.trapped_air.lo, params.trapped_air.hi);
       out.wave_crest[i] = clamp_and_scale(moving_out ? curvature : 0.0f, params.wave_crest.lo, params.wave_crest.hi);
-      const float energy = 0.5f * state.masses[i] * speed * speed;
-      out.kinetic[i] = clamp_and_scale(energy, params.kinetic.lo, params.kinetic.hi);
     }
   });
 }

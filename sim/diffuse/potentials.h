@@ -25,6 +25,7 @@ struct FormationPotentials {
 void compute_normals(const NeighbourGrid& grid, float particle_volume, const DiffuseParams& params,
                      std::vector<Vec3f>& normals);
 
+// Particles with I_k = 0 get I_ta = I_wc = 0 without their neighbour sums: Eq. 8 multiplies by I_k.
 void compute_potentials(const NeighbourGrid& grid, const FluidStepState& state, const DiffuseParams& params,
                         float particle_volume, FormationPotentials& out);
 

@@ -52,6 +52,7 @@ DiffuseParams formation_params() {
   p.wave_crest = {0.5f, 1.5f};
   p.kinetic = {0.1f, 0.3f};
   p.surface_threshold = 0.3f;
+  p.k_ta = p.k_wc = 1.0f;
   return p;
 }
 
@@ -67,17 +68,27 @@ FormationPotentials pair_potentials(const Vec3f& vi, const Vec3f& vj, float volu
 }
 
 TEST(TrappedAir, ApproachingPairCountsTwiceRecedingPairNever) {
+  // Both move at 0.5 m/s (E = 0.125 J, above tau_k's min, so the sums are evaluated).
   // Approaching: v_ij = (1,0,0), x^_ij = (-1,0,0): |v_ij| (1 - (-1)) W = 1 * 2 * 0.5 = 1 for both.
   // I_ta = (1 - 0.25) / (2 - 0.25) = 3/7.
-  auto approaching = pair_potentials(Vec3f(1, 0, 0), Vec3f(0, 0, 0));
+  auto approaching = pair_potentials(Vec3f(0.5f, 0, 0), Vec3f(-0.5f, 0, 0));
   EXPECT_NEAR(approaching.trapped_air[0], 3.0f / 7.0f, 1e-6);
   EXPECT_NEAR(approaching.trapped_air[1], 3.0f / 7.0f, 1e-6);
   // Receding: v^_ij . x^_ij = 1, so the factor is 0.
-  auto receding = pair_potentials(Vec3f(-1, 0, 0), Vec3f(0, 0, 0));
+  auto receding = pair_potentials(Vec3f(-0.5f, 0, 0), Vec3f(0.5f, 0, 0));
   EXPECT_EQ(receding.trapped_air[0], 0.0f);
+  EXPECT_EQ(receding.trapped_air[1], 0.0f);
   // Sliding past: factor 1, v_diff = 1 * 1 * 0.5 = 0.5, I_ta = 0.25 / 1.75 = 1/7.
-  auto sliding = pair_potentials(Vec3f(0, 1, 0), Vec3f(0, 0, 0));
+  auto sliding = pair_potentials(Vec3f(0, 0.5f, 0), Vec3f(0, -0.5f, 0));
   EXPECT_NEAR(sliding.trapped_air[0], 1.0f / 7.0f, 1e-6);
+}
+
+TEST(TrappedAir, ParticlesTooSlowToEmitGetNoPotential) {
+  // Eq. 8 multiplies by I_k, so a resting particle's sums are skipped and reported as zero.
+  auto p = pair_potentials(Vec3f(1, 0, 0), Vec3f(0, 0, 0));
+  EXPECT_NEAR(p.trapped_air[0], 3.0f / 7.0f, 1e-6);
+  EXPECT_EQ(p.kinetic[1], 0.0f);
+  EXPECT_EQ(p.trapped_air[1], 0.0f);
 }
 
 TEST(TrappedAir, RigidTranslationTrapsNoAir) {
