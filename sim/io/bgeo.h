@@ -1,0 +1,56 @@
+#pragma once
+// Classic Houdini/partio BGEO (version 5), as SPlisHSPlasH and Houdini's .bhclassic export write it.
+//
+// Layout (all values big-endian; the whole file may be gzip-compressed, detected by 1f 8b):
+//   "Bgeo" 'V', int32 version (5), then int32 counts: points, primitives, point groups, primitive
+//   groups, point attributes, vertex attributes, primitive attributes, detail attributes.
+//   Per point attribute: int16 name length, name, uint16 size (words per point), int32 type
+//   (0 float, 1 int, 5 vector; 4 indexed string: int32 string count and int16-length strings instead of
+//   defaults), then `size` int32 default words for types 0/1/5.
+//   Points: x y z w as float32, then each attribute's words in declaration order.
+//   Without primitives or groups: the detail attribute definitions (same form), one record of their
+//   words, and the end marker 00 FF.
+// Houdini's newer JSON geometry (binary 7F 'N' 'S' 'J', or ASCII '{'/'[') is detected and rejected.
+#include <filesystem>
+#include <vector>
+
+#include "core/frames.h"
+#include "core/vec.h"
+#include "io/point_attribute.h"
+
+namespace spume {
+
+struct BgeoInfo {
+  bool gzipped = false;
+  int version = 0;
+  size_t point_count = 0;
+  int primitive_count = 0;
+  int point_group_count = 0;
+  int primitive_group_count = 0;
+  std::vector<PointAttribute> point_attributes;   // type "float", "int", "vector" or "index"
+  std::vector<PointAttribute> detail_attributes;  // empty when trailing data was skipped
+  bool trailing_data_skipped = false;             // primitives/groups present: only points were parsed
+  Aabb bounds;                                    // of the point positions
+};
+
+// Positions; velocities from `v` (preferred) or `velocity` (3 float/vector words); ids from the int
+// attribute `id` (negative ids are rejected); masses from float `mass`. Other attributes are ignored
+// (listed in *info). The frame's index and time are 0: BGEO carries neither.
+FluidFrame read_bgeo(const std::filesystem::path& path, BgeoInfo* info = nullptr);
+
+// Header, attribute list and bounds without building a frame (works for fluid and diffuse files).
+BgeoInfo read_bgeo_info(const std::filesystem::path& path);
+
+// Reads a file written by write_bgeo(path, DiffuseFrame): needs `v`, `type` and `lifetime`; the id is
+// rebuilt from `id` (parent), `birth` and `sample` (missing ones count as 0).
+DiffuseFrame read_bgeo_diffuse(const std::filesystem::path& path);
+
+// Gzip-compressed BGEO with point attributes `id` (int, when the frame has ids), `v` (vector, when it
+// has velocities) and `mass` (float, when it has masses).
+void write_bgeo(const std::filesystem::path& path, const FluidFrame& frame);
+
+// Gzip-compressed BGEO with point attributes `v` (vector), `type` (int: 0 spray, 1 foam, 2 bubble),
+// `lifetime` (float), `id` (int, parent fluid id), `birth` (int, birth step), `sample` (int).
+void write_bgeo(const std::filesystem::path& path, const DiffuseFrame& frame);
+
+}  // namespace spume

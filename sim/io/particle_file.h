@@ -1,0 +1,29 @@
+#pragma once
+// One entry point for particle files of any supported format, chosen by extension.
+//   .bgeo .bgeo.gz .bhclassic .bhclassic.gz  classic BGEO (io/bgeo.h)
+//   .vtk                                      legacy VTK (io/vtk.h)
+//   .vtu .vtp                                 XML VTK (io/vtk.h)
+//   .ply                                      PLY (io/ply.h)
+//   .spf                                      spume fluid cache (io/spume_cache.h)
+//   .spd                                      spume diffuse cache (describe only; not a fluid file)
+#include <filesystem>
+#include <string>
+
+#include "core/frames.h"
+
+namespace spume {
+
+enum class ParticleFormat { Bgeo, VtkLegacy, VtkXml, Ply, FluidCache, DiffuseCache };
+
+// The format a file name implies; Error listing the allowed extensions otherwise.
+ParticleFormat particle_format(const std::filesystem::path& path);
+
+// Reads a fluid frame from any fluid format; the frame is validated (finite values, unique ids) with
+// the path in every message. "<path>: no such file" when it is missing. Empty frames are returned as such.
+FluidFrame read_fluid_file(const std::filesystem::path& path);
+
+// Multi-line human-readable summary for `spume info`: format, point count, attributes, bounds; for
+// diffuse caches (and spume's diffuse BGEO) counts per type and the lifetime range.
+std::string describe_particle_file(const std::filesystem::path& path);
+
+}  // namespace spume

@@ -1,0 +1,142 @@
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+
+#include "core/error.h"
+#include "io/bgeo.h"
+#include "io/particle_file.h"
+#include "io/ply.h"
+#include "io/spume_cache.h"
+#include "io/vtk.h"
+
+namespace fs = std::filesystem;
+using namespace spume;
+
+namespace {
+
+const fs::path kRealFrame = fs::path(SPUME_TEST_DATA_DIR) / "splishsplash_rest_30192.bgeo";
+
+std::string error_of(const std::function<void()>& fn) {
+  try {
+    fn();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "expected spume::Error";
+  return "";
+}
+
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path = fs::temp_directory_path() / ("spume_io_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~TempDir() { fs::remove_all(path); }
+};
+
+FluidFrame sample() {
+  FluidFrame f;
+  f.positions = {Vec3f(0, 0, 0), Vec3f(1, 2, 3), Vec3f(-1, -2, 0.5f)};
+  f.velocities = {Vec3f(0, 0, 1), Vec3f(0, 1, 0), Vec3f(1, 0, 0)};
+  f.ids = {2, 1, 0};
+  return f;
+}
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+}  // namespace
+
+TEST(IoParticleFile, DispatchesOnExtension) {
+  TempDir dir;
+  const FluidFrame f = sample();
+  write_bgeo(dir.path / "a.bgeo", f);
+  write_bgeo(dir.path / "a.bgeo.gz", f);
+  write_bgeo(dir.path / "a.BHCLASSIC", f);
+  write_vtk(dir.path / "a.vtk", f);
+  write_ply(dir.path / "a.ply", f);
+  write_fluid_cache(dir.path / "a.spf", f, 0.02f);
+  std::ofstream(dir.path / "a.vtu") << "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece NumberOfPoints=\"3\">"
+                                       "<Points><DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">"
+                                       "0 0 0 1 2 3 -1 -2 0.5</DataArray></Points><PointData>"
+                                       "<DataArray type=\"Float32\" Name=\"velocity\" NumberOfComponents=\"3\" format=\"ascii\">"
+                                       "0 0 1 0 1 0 1 0 0</DataArray><DataArray type=\"Int32\" Name=\"id\" format=\"ascii\">"
+                                       "2 1 0</DataArray></PointData></Piece></UnstructuredGrid></VTKFile>";
+  for (const char* name : {"a.bgeo", "a.bgeo.gz", "a.BHCLASSIC", "a.vtk", "a.ply", "a.spf", "a.vtu"}) {
+    const FluidFrame g = read_fluid_file(dir.path / name);
+    EXPECT_EQ(g.positions, f.positions) << name;
+    EXPECT_EQ(g.velocities, f.velocities) << name;
+    EXPECT_EQ(g.ids, f.ids) << name;
+  }
+  EXPECT_EQ(particle_format("x/y.vtp"), ParticleFormat::VtkXml);
+  EXPECT_EQ(particle_format("y.SPD"), ParticleFormat::DiffuseCache);
+}
+
+TEST(IoParticleFile, ErrorsForUnknownExtensionMissingFileAndDiffuseCache) {
+  TempDir dir;
+  std::ofstream(dir.path / "a.xyz") << "1 2 3\n";
+  const std::string unknown = error_of([&] { read_fluid_file(dir.path / "a.xyz"); });
+  EXPECT_TRUE(contains(unknown, "unknown particle file extension '.xyz'")) << unknown;
+  EXPECT_TRUE(contains(unknown, ".bgeo, .bgeo.gz")) << unknown;
+  const fs::path missing = dir.path / "missing.bgeo";
+  EXPECT_EQ(error_of([&] { read_fluid_file(missing); }), missing.string() + ": no such file");
+  EXPECT_EQ(error_of([&] { describe_particle_file(missing); }), missing.string() + ": no such file");
+  DiffuseFrame d;
+  write_diffuse_cache(dir.path / "d.spd", d);
+  EXPECT_TRUE(contains(error_of([&] { read_fluid_file(dir.path / "d.spd"); }), "not a fluid frame"));
+}
+
+TEST(IoParticleFile, EmptyFramesAreReadAndNonFinitePositionsRejected) {
+  TempDir dir;
+  std::ofstream(dir.path / "empty.ply") << "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\n"
+                                           "property float z\nend_header\n";
+  EXPECT_EQ(read_fluid_file(dir.path / "empty.ply").size(), 0u);
+  std::ofstream(dir.path / "nan.vtk") << "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nPOINTS 3 float\n"
+                                         "0 0 0 1 1 1 2 -inf 2\n";
+  const std::string msg = error_of([&] { read_fluid_file(dir.path / "nan.vtk"); });
+  EXPECT_TRUE(contains(msg, (dir.path / "nan.vtk").string())) << msg;
+  EXPECT_TRUE(contains(msg, "particle 2")) << msg;
+}
+
+TEST(IoParticleFile, DescribesTheRealFrame) {
+  const std::string d = describe_particle_file(kRealFrame);
+  EXPECT_TRUE(contains(d, "classic BGEO version 5, gzip-compressed")) << d;
+  EXPECT_TRUE(contains(d, "points: 30192")) << d;
+  EXPECT_TRUE(contains(d, "id (int, 1), velocity (vector, 3), density (float, 1)")) << d;
+  EXPECT_TRUE(contains(d, "ids: 0 .. 30191")) << d;
+  // Bounds from the Python decode in io_bgeo_test.cpp (printed with 6 significant digits).
+  EXPECT_TRUE(contains(d, "bounds: (-1.91, 0.0899902, -0.66) .. (-0.99, 1.52999, 0.66)")) << d;
+}
+
+TEST(IoParticleFile, DescribesDiffuseCachesAndFluidCaches) {
+  TempDir dir;
+  DiffuseFrame d;
+  d.index = 9;
+  d.ids = {diffuse_id(1, 0, 0), diffuse_id(2, 0, 0), diffuse_id(3, 0, 0), diffuse_id(3, 0, 1)};
+  d.positions = {Vec3f(0, 0, 0), Vec3f(1, 1, 1), Vec3f(2, 0, 0), Vec3f(0, 3, 0)};
+  d.velocities.assign(4, Vec3f(0, 0, 0));
+  d.lifetimes = {0.5f, 2.0f, 1.25f, 3.5f};
+  d.types = {DiffuseType::Foam, DiffuseType::Spray, DiffuseType::Foam, DiffuseType::Bubble};
+  write_diffuse_cache(dir.path / "d.spd", d);
+  const std::string text = describe_particle_file(dir.path / "d.spd");
+  EXPECT_TRUE(contains(text, "spume diffuse cache")) << text;
+  EXPECT_TRUE(contains(text, "particles: 4 (spray 1, foam 2, bubble 1)")) << text;
+  EXPECT_TRUE(contains(text, "lifetime: 0.5 .. 3.5 s")) << text;
+  EXPECT_TRUE(contains(text, "frame: 9")) << text;
+
+  write_bgeo(dir.path / "d.bgeo", d);
+  const std::string bgeo = describe_particle_file(dir.path / "d.bgeo");
+  EXPECT_TRUE(contains(bgeo, "spume diffuse particles")) << bgeo;
+  EXPECT_TRUE(contains(bgeo, "(spray 1, foam 2, bubble 1)")) << bgeo;
+
+  write_fluid_cache(dir.path / "f.spf", sample(), 0.025f);
+  const std::string fluid = describe_particle_file(dir.path / "f.spf");
+  EXPECT_TRUE(contains(fluid, "particle radius 0.025 m")) << fluid;
+  EXPECT_TRUE(contains(fluid, "points: 3")) << fluid;
+  EXPECT_TRUE(contains(fluid, "bounds: (-1, -2, 0) .. (1, 2, 3)")) << fluid;
+}
