@@ -1,36 +1,70 @@
 #include "potentials.h"
 
+#include <algorithm>
+#include <cmath>
 #include <numbers>
 
 #include "core/parallel.h"
 #include "diffuse/kernels.h"
+#include "grid/block_buffer.h"
 
 namespace spume {
+namespace {
+
+// Runs fn(cell_begin, cell_end, block) for every occupied cell, in parallel; the block holds the
+// cell's 3x3x3 neighbourhood with the given per-point attributes.
+template <typename Fn>
+void for_each_cell_block(const NeighbourGrid& grid, std::initializer_list<std::span<const Vec3f>> attributes, Fn&& fn) {
+  parallel_for(grid.occupied_cell_count(), 16, [&](size_t cb, size_t ce) {
+    BlockBuffer block;
+    for (size_t c = cb; c < ce; ++c) {
+      block.gather(grid, grid.occupied_key(c), attributes);
+      fn(grid.cell_begin(c), grid.cell_begin(c + 1), block);
+    }
+  });
+}
+
+}  // namespace
 
 void compute_normals(const NeighbourGrid& grid, float particle_volume, const DiffuseParams& params,
                      std::vector<Vec3f>& normals) {
-  const float h = grid.support_radius();
-  const CubicSpline kernel(h);
+  const float h = grid.support_radius(), inv_h2 = 1.0f / (h * h);
   const auto points = grid.sorted_points();
   const auto order = grid.sorted_to_original();
   const float full = 4.0f / 3.0f * std::numbers::pi_v<float> * h * h * h / particle_volume;
   const float max_neighbours = params.surface_neighbour_fraction * full;
+  // grad c = V sum_j dW/dr (x_i - x_j)/r = V sigma/h^5 sum_j (f'(q)/q) (x_i - x_j), with the cubic
+  // spline W = sigma/h^3 f(q), q = r/h, sigma = 8/pi.
+  const float scale = particle_volume * 8.0f / (std::numbers::pi_v<float> * h * h * h * h * h);
   normals.assign(points.size(), Vec3f::Zero());
-  parallel_for(points.size(), 1024, [&](size_t b, size_t e) {
-    for (size_t si = b; si < e; ++si) {
-      const Vec3f xi = points[si];
-      Vec3f gradient = Vec3f::Zero();
-      int neighbours = 0;
-      grid.for_each_neighbour(xi, h, [&](uint32_t sj, float d2) {
-        ++neighbours;
-        if (d2 <= 0.0f) return;  // itself, or a coincident particle: no direction (MODEL.md §8.2)
-        const float r = std::sqrt(d2);
-        gradient += (kernel.derivative(r) / r) * (xi - points[sj]);
-      });
-      gradient *= particle_volume;
+  for_each_cell_block(grid, {}, [&](uint32_t begin, uint32_t end, const BlockBuffer& block) {
+    const size_t m = block.size();
+    const float *bx = block.x(), *by = block.y(), *bz = block.z();
+    for (uint32_t si = begin; si < end; ++si) {
+      const float px = points[si].x(), py = points[si].y(), pz = points[si].z();
+      // First the neighbour count (cheap): only sparse neighbourhoods can be surface (MODEL.md §8.10).
+      float count[kLanes] = {};
+      for (size_t j = 0; j < m; j += kLanes)
+        for (size_t l = 0; l < kLanes; ++l) {
+          const float dx = bx[j + l] - px, dy = by[j + l] - py, dz = bz[j + l] - pz;
+          count[l] += (dx * dx + dy * dy + dz * dz) * inv_h2 <= 1.0f ? 1.0f : 0.0f;
+        }
+      if (lane_sum(count) >= max_neighbours) continue;
+      float gx[kLanes] = {}, gy[kLanes] = {}, gz[kLanes] = {};
+      for (size_t j = 0; j < m; j += kLanes)
+        for (size_t l = 0; l < kLanes; ++l) {
+          const float dx = bx[j + l] - px, dy = by[j + l] - py, dz = bz[j + l] - pz;
+          const float q2 = std::min((dx * dx + dy * dy + dz * dz) * inv_h2, 4.0f);
+          const float q = std::sqrt(q2);
+          const float t = std::max(1.0f - q, 0.0f);
+          const float dw = q <= 0.5f ? 18.0f * q2 - 12.0f * q : -6.0f * t * t;
+          // Itself or a coincident particle has no direction (MODEL.md §8.2): weight 0.
+          const float f = q2 > 0.0f ? dw / q : 0.0f;
+          gx[l] -= f * dx, gy[l] -= f * dy, gz[l] -= f * dz;  // (x_i - x_j) = -d
+        }
+      const Vec3f gradient = scale * Vec3f(lane_sum(gx), lane_sum(gy), lane_sum(gz));
       const float magnitude = gradient.norm();
-      if (magnitude * h >= params.surface_threshold && magnitude > 0.0f && float(neighbours) < max_neighbours)
-        normals[order[si]] = -gradient / magnitude;
+      if (magnitude * h >= params.surface_threshold && magnitude > 0.0f) normals[order[si]] = -gradient / magnitude;
     }
   });
 }
@@ -44,36 +78,69 @@ void compute_potentials(const NeighbourGrid& grid, const FluidStepState& state, 
   out.wave_crest.assign(n, 0.0f);
   out.kinetic.assign(n, 0.0f);
 
-  const float h = grid.support_radius();
+  const float h = grid.support_radius(), h2 = h * h, inv_h = 1.0f / h;
   const auto points = grid.sorted_points();
   const auto order = grid.sorted_to_original();
-  parallel_for(n, 1024, [&](size_t b, size_t e) {
-    for (size_t si = b; si < e; ++si) {
-      const uint32_t i = order[si];
-      const Vec3f xi = points[si], vi = state.velocities[i], ni = out.normals[i];
-      const float speed = vi.norm();
-      const float energy = 0.5f * state.masses[i] * speed * speed;
-      out.kinetic[i] = clamp_and_scale(energy, params.kinetic.lo, params.kinetic.hi);
-      if (out.kinetic[i] <= 0.0f) continue;  // Eq. 8 multiplies by I_k: too slow to emit, skip the sums
-      const bool surface = ni.squaredNorm() > 0.0f;
-      float v_diff = 0.0f, curvature = 0.0f;
-      grid.for_each_neighbour(xi, h, [&](uint32_t sj, float d2) {
-        if (d2 <= 0.0f) return;  // MODEL.md §8.2: no direction, no contribution
-        const uint32_t j = order[sj];
-        const float r = std::sqrt(d2);
-        const Vec3f x_ij = (xi - points[sj]) / r;  // unit
-        const float w = paper_weight(r, h);
-        // Eq. 2: |v_ij| (1 - v^_ij . x^_ij) = |v_ij| - v_ij . x^_ij, which is zero-safe for v_ij = 0.
-        const Vec3f v_ij = vi - state.velocities[j];
-        v_diff += (v_ij.norm() - v_ij.dot(x_ij)) * w;
-        // Eqs. 4-6: only convex neighbours (x^_ji . n_i < 0, i.e. x^_ij . n_i > 0) with a normal.
-        const Vec3f& nj = out.normals[j];
-        if (surface && nj.squaredNorm() > 0.0f && x_ij.dot(ni) > 0.0f) curvature += (1.0f - ni.dot(nj)) * w;
-      });
-      // Eq. 7: only particles moving along their normal form crests.
-      const bool moving_out = surface && speed > 0.0f && vi.dot(ni) >= 0.6f * speed;
-      out.trapped_air[i] = clamp_and_scale(v_diff, params.trapped_air.lo, params.trapped_air.hi);
-      out.wave_crest[i] = clamp_and_scale(moving_out ? curvature : 0.0f, params.wave_crest.lo, params.wave_crest.hi);
+  // Kinetic energy first: Eq. 8 multiplies by I_k, so particles too slow to emit skip their sums.
+  parallel_for(n, 4096, [&](size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) {
+      const float speed2 = state.velocities[i].squaredNorm();
+      out.kinetic[i] = clamp_and_scale(0.5f * state.masses[i] * speed2, params.kinetic.lo, params.kinetic.hi);
+    }
+  });
+  std::vector<Vec3f> sorted_velocity(n), sorted_normal(n);
+  parallel_for(n, 4096, [&](size_t b, size_t e) {
+    for (size_t j = b; j < e; ++j) sorted_velocity[j] = state.velocities[order[j]], sorted_normal[j] = out.normals[order[j]];
+  });
+
+  parallel_for(grid.occupied_cell_count(), 16, [&](size_t cb, size_t ce) {
+    BlockBuffer block;
+    for (size_t c = cb; c < ce; ++c) {
+      const uint32_t begin = grid.cell_begin(c), end = grid.cell_begin(c + 1);
+      bool any = false;
+      for (uint32_t si = begin; si < end; ++si) any |= out.kinetic[order[si]] > 0.0f;
+      if (!any) continue;
+      block.gather(grid, grid.occupied_key(c), {sorted_velocity, sorted_normal});
+      const size_t m = block.size();
+      const float *bx = block.x(), *by = block.y(), *bz = block.z();
+      const float *vx = block.attribute(0, 0), *vy = block.attribute(0, 1), *vz = block.attribute(0, 2);
+      const float *nx = block.attribute(1, 0), *ny = block.attribute(1, 1), *nz = block.attribute(1, 2);
+      for (uint32_t si = begin; si < end; ++si) {
+        const uint32_t i = order[si];
+        if (out.kinetic[i] <= 0.0f) continue;
+        const Vec3f xi = points[si], vi = state.velocities[i], ni = out.normals[i];
+        const float surface = ni.squaredNorm() > 0.0f ? 1.0f : 0.0f;
+        float diff[kLanes] = {}, curv[kLanes] = {};
+        const float xix = xi.x(), xiy = xi.y(), xiz = xi.z(), vix = vi.x(), viy = vi.y(), viz = vi.z();
+        const float nix = ni.x(), niy = ni.y(), niz = ni.z();
+        for (size_t j = 0; j < m; j += kLanes)
+          for (size_t l = 0; l < kLanes; ++l) {
+            const float dx = bx[j + l] - xix, dy = by[j + l] - xiy, dz = bz[j + l] - xiz;
+            const float d2 = std::min(dx * dx + dy * dy + dz * dz, 4.0f * h2);
+            const float r = std::sqrt(d2);
+            // Zero distance has no direction (MODEL.md §8.2) and beyond h has no weight (Eq. 3).
+            const float has_direction = d2 > 0.0f ? 1.0f : 0.0f;
+            const float w = has_direction * std::max(1.0f - r * inv_h, 0.0f);
+            const float inv_r = 1.0f / std::max(r, 1e-30f);
+            const float ux = -dx * inv_r, uy = -dy * inv_r, uz = -dz * inv_r;  // x^_ij
+            // Eq. 2: |v_ij| (1 - v^_ij . x^_ij) = |v_ij| - v_ij . x^_ij, zero-safe for v_ij = 0.
+            const float wx = vix - vx[j + l], wy = viy - vy[j + l], wz = viz - vz[j + l];
+            const float speed = std::sqrt(wx * wx + wy * wy + wz * wz);
+            diff[l] += (speed - (wx * ux + wy * uy + wz * uz)) * w;
+            // Eqs. 4-6: convex neighbours (x^_ji . n_i < 0, i.e. x^_ij . n_i > 0) that have a normal.
+            const float nn = nx[j + l] * nx[j + l] + ny[j + l] * ny[j + l] + nz[j + l] * nz[j + l];
+            const float in_front = ux * nix + uy * niy + uz * niz;
+            const float convex = (in_front > 0.0f ? 1.0f : 0.0f) * (nn > 0.0f ? 1.0f : 0.0f);
+            const float dot = nix * nx[j + l] + niy * ny[j + l] + niz * nz[j + l];
+            curv[l] += convex * (1.0f - dot) * w;
+          }
+        const float v_diff = lane_sum(diff), curvature = surface * lane_sum(curv);
+        // Eq. 7: only particles moving along their normal form crests.
+        const float speed = vi.norm();
+        const bool moving_out = surface > 0.0f && speed > 0.0f && vi.dot(ni) >= 0.6f * speed;
+        out.trapped_air[i] = clamp_and_scale(v_diff, params.trapped_air.lo, params.trapped_air.hi);
+        out.wave_crest[i] = clamp_and_scale(moving_out ? curvature : 0.0f, params.wave_crest.lo, params.wave_crest.hi);
+      }
     }
   });
 }

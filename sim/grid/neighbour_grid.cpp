@@ -20,6 +20,7 @@ void NeighbourGrid::build(std::span<const Vec3f> points, float support_radius) {
   if (n == 0) {
     dims_ = {0, 0, 0};
     cell_start_.assign(1, 0);
+    occupied_keys_.clear();
     return;
   }
 
@@ -53,9 +54,11 @@ void NeighbourGrid::build(std::span<const Vec3f> points, float support_radius) {
     }
   });
   // cell_start[k] = number of points with key < k, filled by walking the sorted keys once.
+  occupied_keys_.clear();
   uint32_t k = 0;
   for (size_t i = 0; i < n; ++i) {
     const uint32_t key = uint32_t(packed[i] >> 32);
+    if (i == 0 || key != uint32_t(packed[i - 1] >> 32)) occupied_keys_.push_back(key);
     while (k <= key) cell_start_[k++] = uint32_t(i);
   }
   while (k <= keys) cell_start_[k++] = uint32_t(n);

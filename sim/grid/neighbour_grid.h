@@ -38,6 +38,11 @@ class NeighbourGrid {
   uint32_t key_of(const Vec3f& p) const;
   uint32_t key_count() const { return uint32_t(dims_[0]) * dims_[1] * dims_[2]; }
 
+  // Occupied cells in sorted order: cell c holds sorted points [cell_begin(c), cell_begin(c + 1)).
+  size_t occupied_cell_count() const { return occupied_keys_.size(); }
+  uint32_t occupied_key(size_t c) const { return occupied_keys_[c]; }
+  uint32_t cell_begin(size_t c) const { return c < occupied_keys_.size() ? cell_start_[occupied_keys_[c]] : uint32_t(size()); }
+
   // The 9 row ranges covering the 3x3x3 cells around `key` (which must not be kOutside).
   std::array<Range, 9> block_ranges(uint32_t key) const;
 
@@ -60,6 +65,7 @@ class NeighbourGrid {
   Vec3f origin_ = Vec3f::Zero();
   std::array<int, 3> dims_ = {0, 0, 0};
   std::vector<uint32_t> cell_start_;  // key_count() + 1 entries: first sorted index of each cell
+  std::vector<uint32_t> occupied_keys_;
   std::vector<Vec3f> sorted_points_;
   std::vector<uint32_t> order_;
 };
