@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "scene/diffuse_params_reader.h"
+#include "scene/solids_reader.h"
 
 namespace spume {
 namespace {
@@ -50,6 +51,7 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
       root.fail_at("domain", "min must be below max on every axis");
   }
 
+  scene.solids = read_solids(root, scene.gravity);
   scene.diffuse = read_diffuse_params(root.child("diffuse"), scene.fluid, scene.gravity);
   scene.write_bgeo = root.child("output").boolean("bgeo", false);
   return scene;

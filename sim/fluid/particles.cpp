@@ -1,0 +1,83 @@
+#include "particles.h"
+
+#include <cmath>
+
+#include "core/error.h"
+#include "core/parallel.h"
+
+namespace spume::fluid {
+
+void Particles::resize(size_t n) {
+  x.resize(n);
+  v.resize(n);
+  id.resize(n);
+  density_warm.resize(n);
+  divergence_warm.resize(n);
+  density.resize(n);
+  factor.resize(n);
+  accel.resize(n);
+  pressure.resize(n);
+  source.resize(n);
+}
+
+namespace {
+template <typename T>
+void permute(std::vector<T>& a, std::span<const uint32_t> order, std::vector<T>& scratch) {
+  scratch.resize(a.size());
+  parallel_for(a.size(), 4096, [&](size_t b, size_t e) {
+    for (size_t k = b; k < e; ++k) scratch[k] = a[order[k]];
+  });
+  a.swap(scratch);
+}
+}  // namespace
+
+void Particles::reorder(std::span<const uint32_t> order) {
+  std::vector<Vec3f> vec_scratch;
+  permute(x, order, vec_scratch);
+  permute(v, order, vec_scratch);
+  std::vector<uint32_t> id_scratch;
+  permute(id, order, id_scratch);
+  std::vector<float> f_scratch;
+  permute(density_warm, order, f_scratch);
+  permute(divergence_warm, order, f_scratch);
+}
+
+Particles fill_blocks(const std::vector<FluidBlock>& blocks, float radius, const SolidSet& solids, size_t& skipped) {
+  const double d = 2.0 * double(radius);
+  std::vector<Vec3f> points;
+  skipped = 0;
+  for (size_t bi = 0; bi < blocks.size(); ++bi) {
+    const FluidBlock& b = blocks[bi];
+    if (!finite(b.min) || !finite(b.max) || !(b.min.array() < b.max.array()).all())
+      fail("fluid block ", bi, ": min must be below max on every axis");
+    int n[3];
+    double start[3];
+    for (int a = 0; a < 3; ++a) {
+      const double extent = double(b.max[a]) - double(b.min[a]);
+      n[a] = int(std::floor(extent / d + 1e-4));  // tolerate extents that are multiples of d up to rounding
+      start[a] = double(b.min[a]) + 0.5 * (extent - n[a] * d) + 0.5 * d;
+    }
+    if (double(n[0]) * n[1] * n[2] > 2.0e9) fail("fluid block ", bi, ": too many particles for radius ", radius);
+    for (int k = 0; k < n[2]; ++k)
+      for (int j = 0; j < n[1]; ++j)
+        for (int i = 0; i < n[0]; ++i) {
+          const Vec3f p(float(start[0] + i * d), float(start[1] + j * d), float(start[2] + k * d));
+          if (solids.inside(p)) {
+            ++skipped;
+            continue;
+          }
+          points.push_back(p);
+        }
+  }
+  if (points.size() >= size_t(UINT32_MAX)) fail("fluid blocks: ", points.size(), " particles is too many");
+  Particles out;
+  out.resize(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    out.x[i] = points[i];
+    out.v[i] = Vec3f::Zero();
+    out.id[i] = uint32_t(i);
+  }
+  return out;
+}
+
+}  // namespace spume::fluid

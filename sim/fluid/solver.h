@@ -1,0 +1,82 @@
+#pragma once
+// spume's incompressible SPH fluid: DFSPH [BK15, BK17] with boundary particles (layers of frozen
+// fluid inside the solids, boundary.h) pushing with Akinci's pressure force [AIA12], a CFL-adaptive
+// time step, standard SPH viscosity and gravity, in SI units. Deterministic: results
+// are bit-identical for any thread count (each parallel loop writes each element once; sums use
+// fixed chunks, see reduce.h).
+//
+// One step (the simulation loop of [BK17], rotated so that it starts from fresh neighbourhoods):
+//   1. sort the particles by grid cell, cache neighbour pairs, density and the DFSPH factor
+//   2. divergence-free solve on v (pressure.h)
+//   3. non-pressure accelerations a (forces.h); dt from the CFL condition (time_step.h)
+//   4. v* = v + dt a; constant-density solve on v*
+//   5. x += dt v; solids move to t + dt; any particle that entered a solid is projected out
+//
+// References: [BK15] Bender, Koschier: Divergence-free smoothed particle hydrodynamics, SCA 2015.
+// [BK17] Bender, Koschier: Divergence-free SPH for incompressible and viscous fluids, IEEE TVCG 2017.
+// [AIA12] Akinci, Ihmsen, Akinci, Solenthaler, Teschner: Versatile rigid-fluid coupling for
+// incompressible SPH, ACM TOG (SIGGRAPH) 2012. [Mon05] Monaghan: Smoothed particle hydrodynamics,
+// Rep. Prog. Phys. 68, 2005.
+#include <vector>
+
+#include "core/frames.h"
+#include "fluid/boundary.h"
+#include "fluid/fluid_params.h"
+#include "fluid/kernel.h"
+#include "fluid/neighbours.h"
+#include "fluid/particles.h"
+#include "grid/neighbour_grid.h"
+#include "scene/solids.h"
+
+namespace spume {
+
+class FluidSolver {
+ public:
+  // Fills the blocks (see FluidBlock; lattice points inside solids or outside a tank are left out and
+  // counted in stats().removed_at_start) and samples the solids. Throws Error for bad parameters,
+  // bad solid motions, or blocks that hold no particle.
+  FluidSolver(FluidSolverParams params, const std::vector<FluidBlock>& blocks, SolidSet solids);
+
+  // Steps until time() == t exactly (the last steps are fitted to land on t). No-op if t <= time().
+  void advance_to(double t);
+  // One step of at most the CFL time step; returns dt (s).
+  double step();
+
+  // The current state in id order (ids 0..n-1), labelled with `index` and the current time.
+  FluidFrame frame(int index) const;
+  // What the diffuse model needs to know about this fluid (radius, h = 4r, rest density, fps).
+  FluidSequenceInfo info(double fps) const;
+  SolverStats stats() const;
+
+  double time() const { return time_; }
+  size_t size() const { return particles_.size(); }
+  const FluidSolverParams& params() const { return params_; }
+  const SolidSet& solids() const { return solids_; }
+  float particle_volume() const { return volume_; }  // (2r)^3, m^3
+  // Current per-particle density rho / rho0 (neighbourhoods are always built at the current
+  // positions), in id order.
+  std::vector<float> density_ratios() const;
+  // Boundary particle positions at the current time (for inspection and tests).
+  std::vector<Vec3f> boundary_positions() const;
+
+ private:
+  double step_to(double target);  // one step, shortened to land on target
+  void update_neighbourhoods();
+  void project_out_of_solids();
+
+  FluidSolverParams params_;
+  SolidSet solids_;
+  fluid::Kernel kernel_;
+  float volume_;
+  fluid::Particles particles_;
+  fluid::Boundary boundary_;
+  NeighbourGrid grid_;
+  fluid::Neighbourhoods neighbourhoods_;
+  double time_ = 0.0;
+  double dt_prev_;
+  SolverStats stats_;
+  double dt_sum_ = 0.0;
+  uint64_t density_iterations_ = 0, divergence_iterations_ = 0;
+};
+
+}  // namespace spume

@@ -1,0 +1,77 @@
+#include "solids_reader.h"
+
+#include <cmath>
+
+#include "core/error.h"
+
+namespace spume {
+namespace {
+
+Vec3f required_vec3(const ParamReader& r, const std::string& key, const char* what) {
+  const auto v = r.optional_vec3(key);
+  if (!v) r.fail_at(key, str("missing: ", what));
+  return *v;
+}
+
+Motion read_motion(const ParamReader& m) {
+  const Motion defaults;
+  Motion motion;
+  const std::string type = m.choice("type", "sine", {"sine", "keyframes"});
+  if (type == "sine") {
+    motion.kind = Motion::Kind::Sine;
+    const Vec3f axis = m.vec3("axis", defaults.axis);
+    if (!(axis.norm() > 0.0f)) m.fail_at("axis", "must be a non-zero direction [x, y, z]");
+    motion.axis = axis.normalized();
+    motion.amplitude = float(m.number_in("amplitude", defaults.amplitude, 0.0, 1e3));
+    motion.frequency = float(m.number_in("frequency", defaults.frequency, 0.0, 1e3));
+    motion.phase = float(m.number("phase", defaults.phase));
+    motion.start = m.number_in("start", defaults.start, 0.0, 1e6);
+  } else {
+    motion.kind = Motion::Kind::Keyframes;
+    const auto keys = m.array_of_objects("keys");
+    if (keys.empty()) m.fail_at("keys", "missing: [{\"time\": s, \"offset\": [x, y, z] m}, ...], at least one");
+    for (const ParamReader& k : keys) {
+      if (!k.has("time")) k.fail_at("time", "missing: the keyframe's time in s");
+      const double t = k.number("time", 0.0);
+      if (!motion.times.empty() && !(t > motion.times.back()))
+        k.fail_at("time", str("keyframe times must increase; ", t, " follows ", motion.times.back()));
+      motion.times.push_back(t);
+      motion.offsets.push_back(required_vec3(k, "offset", "the keyframe's offset [x, y, z] in m"));
+    }
+  }
+  return motion;
+}
+
+}  // namespace
+
+SolidSet read_solids(const ParamReader& root, const Vec3f& gravity) {
+  int up = 1;
+  if (gravity.norm() > 0.0f) gravity.cwiseAbs().maxCoeff(&up);
+  std::vector<Solid> solids;
+  for (const ParamReader& r : root.array_of_objects("solids")) {
+    const Solid defaults;
+    Solid s;
+    const std::string type = r.choice("type", "tank", {"tank", "box", "sphere"});
+    if (type == "sphere") {
+      s.kind = Solid::Kind::Sphere;
+      s.center = required_vec3(r, "center", "the sphere's centre [x, y, z] in m");
+      if (!r.has("radius")) r.fail_at("radius", "missing: the sphere's radius in m");
+      s.radius = float(r.positive("radius", defaults.radius));
+    } else {
+      s.kind = type == "tank" ? Solid::Kind::Tank : Solid::Kind::Box;
+      s.min = required_vec3(r, "min", "the lower corner [x, y, z] in m");
+      s.max = required_vec3(r, "max", "the upper corner [x, y, z] in m");
+      if (!(s.min.array() < s.max.array()).all()) r.fail_at("max", "must be above min on every axis");
+      if (s.kind == Solid::Kind::Tank) {
+        s.open_top = r.boolean("open_top", defaults.open_top);
+        s.up_axis = up;
+      }
+    }
+    if (r.has("motion")) s.motion = read_motion(r.child("motion"));
+    with_context(r.source() + ": " + r.path_of("motion"), [&] { s.motion.validate("motion"); });
+    solids.push_back(std::move(s));
+  }
+  return SolidSet(std::move(solids));
+}
+
+}  // namespace spume

@@ -1,0 +1,27 @@
+#pragma once
+// Reading a scene's solids (SI units). Defaults: Solid's and Motion's (scene/solids.h), the only ones.
+//
+//   "solids": [
+//     {"type": "tank", "min": [0, 0, 0], "max": [4, 3, 1], "open_top": true},   // m; hollow box
+//     {"type": "box", "min": [..], "max": [..]},                                 // m; solid obstacle
+//     {"type": "sphere", "center": [..], "radius": 0.2},                         // m
+//     {"type": "box", "min": [..], "max": [..],                                  // a wave-maker piston
+//      "motion": {"type": "sine", "axis": [1, 0, 0],  // direction (normalised here)
+//                 "amplitude": 0.05,                  // m
+//                 "frequency": 1.0,                   // Hz
+//                 "phase": 0,                         // rad
+//                 "start": 0}},                       // s; at rest before
+//     {"type": "box", ..., "motion": {"type": "keyframes",
+//                 "keys": [{"time": 0, "offset": [0, 0, 0]}, {"time": 2, "offset": [1, 0, 0]}]}}  // s, m
+//   ]
+// Motions translate the solid: offset(t) is added to its geometry (scene/solids.h). A tank's "up" is
+// the axis along which gravity is strongest.
+#include "core/params.h"
+#include "scene/solids.h"
+
+namespace spume {
+
+// Reads root["solids"] (absent: no solids). Errors name the file and key path.
+SolidSet read_solids(const ParamReader& root, const Vec3f& gravity);
+
+}  // namespace spume

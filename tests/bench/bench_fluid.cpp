@@ -1,0 +1,63 @@
+// Fluid solver throughput (issue 3): the dam break of SPlisHSPlasH's reference measurement, ~30k
+// particles of radius 0.02 m (a 1 x 2 x 1 m column, 25 x 50 x 25 = 31,250 particles, in a 4 x 3 x 1 m
+// tank), simulated for 1 s at 50 frames per second from rest. Reported per repetition:
+// microseconds per particle-step (wall time / (steps x particles)), average time step, steps per
+// frame, iterations, and the share of each stage. Anchor: SPlisHSPlasH 2.16 DFSPH on this machine,
+// 52.5 ms per step = 1.7 us per particle-step, average dt 2.57 ms. Target: <= 1.5 us.
+// Run: build/bench/bench_fluid --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+
+#include "core/parallel.h"
+#include "fluid/solver.h"
+
+namespace spume {
+namespace {
+
+FluidSolver dam_break(float radius) {
+  FluidSolverParams p;
+  p.particle_radius = radius;
+  Solid tank;
+  tank.kind = Solid::Kind::Tank;
+  tank.min = Vec3f(0, 0, 0);
+  tank.max = Vec3f(4, 3, 1);
+  return FluidSolver(p, {FluidBlock{Vec3f(0, 0, 0), Vec3f(1, 2, 1)}}, SolidSet({tank}));
+}
+
+void BM_DamBreak(benchmark::State& state) {
+  const float radius = float(state.range(0)) * 1e-3f;
+  const int frames = int(state.range(1));
+  set_thread_count(0);
+  double seconds = 0.0, particle_steps = 0.0;
+  SolverStats st;
+  for (auto _ : state) {
+    state.PauseTiming();
+    FluidSolver solver = dam_break(radius);
+    state.ResumeTiming();
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int f = 1; f <= frames; ++f) solver.advance_to(f / 50.0);
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    st = solver.stats();
+    particle_steps += double(st.steps) * double(solver.size());
+    state.counters["particles"] = double(solver.size());
+  }
+  state.counters["us_per_particle_step"] = 1e6 * seconds / particle_steps;
+  state.counters["avg_dt_ms"] = 1e3 * st.average_dt;
+  state.counters["steps_per_frame"] = double(st.steps) / frames;
+  state.counters["density_iterations"] = st.average_density_iterations;
+  state.counters["divergence_iterations"] = st.average_divergence_iterations;
+  state.counters["ms_per_frame"] = 1e3 * seconds / (double(state.iterations()) * frames);
+  double stage_total = 0.0;
+  for (double s : st.stage_seconds) stage_total += s;
+  const char* names[] = {"neighbours_pct", "divergence_pct", "forces_pct", "density_pct", "advect_pct"};
+  for (size_t s = 0; s < st.stage_seconds.size(); ++s) state.counters[names[s]] = 100.0 * st.stage_seconds[s] / stage_total;
+}
+
+// radius in mm, frames at 50 fps.
+BENCHMARK(BM_DamBreak)->Args({20, 50})->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+
+}  // namespace
+}  // namespace spume
+
+BENCHMARK_MAIN();

@@ -1,0 +1,123 @@
+// Scene keys of the fluid solver and the solids: values, defaults, and errors that name the key.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "core/error.h"
+#include "scene/fluid_scene_reader.h"
+#include "scene/solids_reader.h"
+
+namespace spume {
+namespace {
+
+std::string error_of(const std::function<void()>& fn) {
+  try {
+    fn();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(FluidSceneReader, ReadsSolverKeysAndFallsBackToDefaults) {
+  const ParamReader root = ParamReader::from_json(Json::parse(R"({
+    "fluid": {"source": "solver", "radius": 0.02,
+              "blocks": [{"min": [0, 0, 0], "max": [1, 2, 1]}, {"min": [2, 0, 0], "max": [3, 1, 1]}],
+              "solver": {"viscosity": 0.002, "cfl": 0.3, "max_dt": 0.004, "warm_start": true}}
+  })"), "scene.json");
+  const FluidSolverSetup s = read_fluid_solver(root.child("fluid"), Vec3f(0, 0, -9.81f));
+  const FluidSolverParams defaults;
+  EXPECT_FLOAT_EQ(s.params.particle_radius, 0.02f);
+  EXPECT_FLOAT_EQ(s.params.viscosity, 0.002f);
+  EXPECT_FLOAT_EQ(s.params.cfl, 0.3f);
+  EXPECT_DOUBLE_EQ(s.params.max_dt, 0.004);
+  EXPECT_TRUE(s.params.warm_start);
+  EXPECT_EQ(s.params.gravity, Vec3f(0, 0, -9.81f));
+  EXPECT_FLOAT_EQ(s.params.density_tolerance, defaults.density_tolerance);
+  EXPECT_FLOAT_EQ(s.params.boundary_viscosity, defaults.boundary_viscosity);
+  ASSERT_EQ(s.blocks.size(), 2u);
+  EXPECT_EQ(s.blocks[1].min, Vec3f(2, 0, 0));
+}
+
+TEST(FluidSceneReader, ErrorsNameFileAndKey) {
+  auto read = [](const char* text) {
+    const ParamReader root = ParamReader::from_json(Json::parse(text), "wave.json");
+    read_fluid_solver(root.child("fluid"), Vec3f(0, -9.81f, 0));
+  };
+  EXPECT_NE(error_of([&] { read(R"({"fluid": {"blocks": [{"min": [0,0,0], "max": [1,1,1]}]}})"); })
+                .find("wave.json: /fluid/radius"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { read(R"({"fluid": {"radius": 0.01}})"); }).find("/fluid/blocks"), std::string::npos);
+  EXPECT_NE(error_of([&] { read(R"({"fluid": {"radius": 0.01, "blocks": [{"min": [0,0,0], "max": [1,0,1]}]}})"); })
+                .find("/fluid/blocks/0/max"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] {
+              read(R"({"fluid": {"radius": 0.01, "blocks": [{"min": [0,0,0], "max": [1,1,1]}],
+                                 "solver": {"cfl": 7}}})");
+            }).find("/fluid/solver/cfl"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] {
+              read(R"({"fluid": {"radius": 0.01, "support_radius": 0.03,
+                                 "blocks": [{"min": [0,0,0], "max": [1,1,1]}]}})");
+            }).find("/fluid/support_radius"),
+            std::string::npos);
+  // A typo is caught by the unknown-key check once every reader has run.
+  const ParamReader root = ParamReader::from_json(
+      Json::parse(R"({"fluid": {"radius": 0.01, "blocks": [{"min": [0,0,0], "max": [1,1,1]}],
+                                "solver": {"viscosty": 0.1}}})"),
+      "wave.json");
+  read_fluid_solver(root.child("fluid"), Vec3f(0, -9.81f, 0));
+  EXPECT_NE(error_of([&] { root.reject_unknown_keys(); }).find("viscosty"), std::string::npos);
+}
+
+TEST(SolidsReader, ReadsShapesAndMotions) {
+  const ParamReader root = ParamReader::from_json(Json::parse(R"({"solids": [
+    {"type": "tank", "min": [0, 0, 0], "max": [4, 3, 1], "open_top": false},
+    {"type": "sphere", "center": [1, 1, 0.5], "radius": 0.2},
+    {"type": "box", "min": [0, 0, 0], "max": [0.1, 1, 1],
+     "motion": {"type": "sine", "axis": [2, 0, 0], "amplitude": 0.05, "frequency": 0.5}},
+    {"type": "box", "min": [2, 0, 0], "max": [2.2, 0.5, 1],
+     "motion": {"type": "keyframes", "keys": [{"time": 0, "offset": [0, 0, 0]}, {"time": 2, "offset": [1, 0, 0]}]}}
+  ]})"), "ship.json");
+  const SolidSet set = read_solids(root, Vec3f(0, -9.81f, 0));
+  ASSERT_EQ(set.solids().size(), 4u);
+  const auto& s = set.solids();
+  EXPECT_EQ(s[0].kind, Solid::Kind::Tank);
+  EXPECT_FALSE(s[0].open_top);
+  EXPECT_EQ(s[0].up_axis, 1);
+  EXPECT_EQ(s[1].kind, Solid::Kind::Sphere);
+  EXPECT_FLOAT_EQ(s[1].radius, 0.2f);
+  EXPECT_EQ(s[2].motion.kind, Motion::Kind::Sine);
+  EXPECT_EQ(s[2].motion.axis, Vec3f(1, 0, 0));  // normalised
+  EXPECT_NEAR(s[2].motion.offset(0.5).x(), 0.05f, 1e-6f);  // sin(2 pi 0.5 0.5) = 1
+  EXPECT_TRUE(s[3].motion.offset(1.0).isApprox(Vec3f(0.5f, 0, 0)));
+  EXPECT_NO_THROW(root.reject_unknown_keys());
+
+  const ParamReader z_up = ParamReader::from_json(
+      Json::parse(R"({"solids": [{"type": "tank", "min": [0,0,0], "max": [1,1,1]}]})"), "z.json");
+  EXPECT_EQ(read_solids(z_up, Vec3f(0, 0, -9.81f)).solids()[0].up_axis, 2);
+}
+
+TEST(SolidsReader, ErrorsNameTheKey) {
+  auto read = [](const char* text) {
+    read_solids(ParamReader::from_json(Json::parse(text), "s.json"), Vec3f(0, -9.81f, 0));
+  };
+  EXPECT_NE(error_of([&] { read(R"({"solids": [{"type": "cone"}]})"); }).find("/solids/0/type"), std::string::npos);
+  EXPECT_NE(error_of([&] { read(R"({"solids": [{"type": "sphere", "center": [0,0,0]}]})"); })
+                .find("/solids/0/radius"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] {
+              read(R"({"solids": [{"type": "box", "min": [0,0,0], "max": [1,1,1],
+                       "motion": {"type": "keyframes", "keys": [{"time": 1, "offset": [0,0,0]},
+                                                                {"time": 1, "offset": [1,0,0]}]}}]})");
+            }).find("/solids/0/motion/keys/1/time"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] {
+              read(R"({"solids": [{"type": "box", "min": [0,0,0], "max": [1,1,1],
+                       "motion": {"type": "sine", "axis": [0,0,0]}}]})");
+            }).find("/solids/0/motion/axis"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace spume
