@@ -106,6 +106,14 @@ void DiffuseSimulator::step(const FluidStepState& state, uint32_t step, float dt
     if (p.max_particles) budget.max_particles = *p.max_particles + (old_count - survivors);
     emitted = emit_diffuse(state, potentials_, budget, step, dt, setup_.fluid.particle_radius, particles_);
   }
+  // A newborn sampled around a fluid particle that hugs a wall may start inside it.
+  if (!setup_.solids.empty()) {
+    const float skin = 1e-4f * setup_.fluid.particle_radius;
+    parallel_for(particles_.size() - old_count, 4096, [&](size_t b, size_t e) {
+      for (size_t k = old_count + b; k < old_count + e; ++k)
+        setup_.solids.push_out(particles_.positions[k], particles_.velocities[k], skin);
+    });
+  }
   pending_.generated += emitted.emitted;
   pending_.dropped += emitted.requested - emitted.emitted;
 
