@@ -1,0 +1,366 @@
+#include "surface_pass.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+#include "core/error.h"
+#include "gl_objects.h"
+#include "sun_shadow.h"
+#include "surface/mesh_primitives.h"
+#include "surface_shaders.h"
+
+namespace spume {
+namespace {
+
+constexpr float kInf = INFINITY;
+
+// Eigen stores column-major, as GLSL expects.
+void put_matrix(float* dst, const Eigen::Matrix4f& m) { std::memcpy(dst, m.data(), 16 * sizeof(float)); }
+
+// Near and far planes around everything drawn: tight planes keep the depth buffer precise.
+std::pair<float, float> clip_planes(const SurfaceScene& scene, const Camera& camera) {
+  Vec3f right, up, back;
+  camera.basis(right, up, back);
+  float near_d = kInf, far_d = 0.0f;
+  auto add = [&](const Vec3f& p) {
+    const float z = (camera.position - p).dot(back);  // distance along the view axis
+    near_d = std::min(near_d, z), far_d = std::max(far_d, z);
+  };
+  auto add_mesh = [&](const TriangleMesh* m, const Vec3f& offset) {
+    if (!m) return;
+    Aabb box;
+    for (const Vec3f& v : m->vertices) box.extend(v + offset);
+    if (box.empty()) return;
+    for (int c = 0; c < 8; ++c)
+      add(Vec3f(c & 1 ? box.max.x() : box.min.x(), c & 2 ? box.max.y() : box.min.y(),
+                c & 4 ? box.max.z() : box.min.z()));
+  };
+  add_mesh(scene.fluid, Vec3f::Zero());
+  for (const SceneSolid& s : scene.solids) add_mesh(s.mesh, s.offset);
+  const Environment& env = scene.environment;
+  if (env.ground) {
+    const float g = ground_extent(env);
+    for (int c = 0; c < 4; ++c)
+      add(Vec3f(camera.position.x() + (c & 1 ? g : -g), env.ground_height, camera.position.z() + (c & 2 ? g : -g)));
+    near_d = std::min(near_d, camera.position.y() - env.ground_height);
+  }
+  far_d = std::max(far_d * 1.01f, 1e-2f);
+  near_d = std::clamp(0.5f * near_d, std::max(1e-3f, far_d * 1e-5f), 0.5f * far_d);
+  return {near_d, far_d};
+}
+
+// Five RGBA8 planes of float bits (rows bottom-up: r, g, b, depth, opaque depth) -> top-first image
+// and depths.
+void unpack(const std::vector<uint32_t>& planes, int w, int h, SurfaceImage& out) {
+  out.colour = ImageRGBf(w, h);
+  out.depth.resize(size_t(w) * h);
+  out.opaque_depth.resize(size_t(w) * h);
+  const size_t n = size_t(w) * h;
+  auto value = [&](int plane, size_t i) {
+    float v;
+    std::memcpy(&v, &planes[size_t(plane) * n + i], sizeof v);
+    return v;
+  };
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = size_t(h - 1 - y) * w + x, o = size_t(y) * w + x;
+      out.colour.rgb[o] = Vec3f(value(0, i), value(1, i), value(2, i));
+      out.depth[o] = value(3, i);
+      out.opaque_depth[o] = value(4, i);
+    }
+}
+
+}  // namespace
+
+bool SurfaceScene::shows_geometry() const {
+  if (fluid && !fluid->empty()) return true;
+  for (const SceneSolid& s : solids)
+    if (s.mesh && !s.mesh->empty()) return true;
+  return false;
+}
+
+float ground_extent(const Environment& env) { return 4.0f * env.haze_distance; }
+
+struct SurfacePass::Gpu {
+  OsmesaContext context;
+  GlProgram sky, opaque, back, water, pack;
+  GLuint empty_vao = 0, env_ubo = 0, frame_ubo = 0;
+  GpuMesh fluid, ground;
+  SunShadow shadow;
+  std::vector<std::unique_ptr<GpuMesh>> solids;
+  int width = 0, height = 0;
+  // Targets: opaque (A), water back faces (B), final (C).
+  GlTexture a_colour, a_depth, a_z, b_depth, b_z, c_colour, c_depth, c_z;
+  GlFramebuffer a, b, c;
+  int out_width = 0, out_height = 0;
+  GlTexture planes[5];
+  GlFramebuffer p;
+  std::vector<uint32_t> packed;
+
+  explicit Gpu(const OsmesaOptions& options)
+      : context(1, 1, options),  // a 1x1 drawable: every pass renders into framebuffer objects
+        sky(shaders::sky_vertex(), shaders::sky_fragment(), "sky"),
+        opaque(shaders::mesh_vertex(), shaders::opaque_fragment(), "opaque"),
+        back(shaders::mesh_vertex(), shaders::depth_fragment(), "water back faces"),
+        water(shaders::mesh_vertex(), shaders::water_fragment(), "water"),
+        pack(shaders::sky_vertex(), shaders::pack_fragment(), "pack") {
+    glGenVertexArrays(1, &empty_vao);
+    glGenBuffers(1, &env_ubo);
+    glGenBuffers(1, &frame_ubo);
+    check_gl("creating the surface pass");
+  }
+  ~Gpu() {
+    context.ensure_current();  // the members' GL objects are deleted after this body, in this context
+    glDeleteBuffers(1, &frame_ubo);
+    glDeleteBuffers(1, &env_ubo);
+    glDeleteVertexArrays(1, &empty_vao);
+  }
+
+  // Targets of w x h (supersampled); the context's buffer holds the packed output of out_w x out_h.
+  void resize(int w, int h, int out_w, int out_h) {
+    if (out_w != out_width || out_h != out_height) {
+      out_width = out_w, out_height = out_h;
+      GLuint ids[5];
+      for (int k = 0; k < 5; ++k) planes[k] = GlTexture(GL_RGBA8, out_w, out_h), ids[k] = planes[k].id();
+      p = GlFramebuffer(ids, 0, "packed output");
+    }
+    if (w == width && h == height) return;
+    width = w, height = h;
+    a_colour = GlTexture(GL_RGBA16F, w, h);
+    a_depth = GlTexture(GL_R32F, w, h);
+    a_z = GlTexture(GL_DEPTH_COMPONENT32F, w, h);
+    b_depth = GlTexture(GL_R32F, w, h), b_z = GlTexture(GL_DEPTH_COMPONENT32F, w, h);
+    c_colour = GlTexture(GL_RGBA16F, w, h);
+    c_depth = GlTexture(GL_R32F, w, h);
+    c_z = GlTexture(GL_DEPTH_COMPONENT32F, w, h);
+    const GLuint ac[] = {a_colour.id(), a_depth.id()}, bc[] = {b_depth.id()}, cc[] = {c_colour.id(), c_depth.id()};
+    a = GlFramebuffer(ac, a_z.id(), "opaque");
+    b = GlFramebuffer(bc, b_z.id(), "water back faces");
+    c = GlFramebuffer(cc, c_z.id(), "final");
+  }
+
+  // Binds f and clears it: colour to black, linear depth to +inf, depth buffer to the far plane.
+  static void bind_and_clear(const GlFramebuffer& f, bool has_colour) {
+    const float black[4] = {0, 0, 0, 1}, inf[4] = {kInf, kInf, kInf, kInf}, one = 1.0f;
+    f.bind();
+    glDepthMask(GL_TRUE);
+    if (has_colour) {
+      glClearBufferfv(GL_COLOR, 0, black);
+      glClearBufferfv(GL_COLOR, 1, inf);
+    } else {
+      glClearBufferfv(GL_COLOR, 0, inf);
+    }
+    glClearBufferfv(GL_DEPTH, 0, &one);
+  }
+
+  void copy(const GlTexture& from, const GlTexture& to) const {
+    glCopyImageSubData(from.id(), GL_TEXTURE_2D, 0, 0, 0, 0, to.id(), GL_TEXTURE_2D, 0, 0, 0, 0, width, height, 1);
+  }
+};
+
+SurfacePass::SurfacePass(const SurfacePassOptions& options) : options_(options) {
+  if (options_.supersample < 1 || options_.supersample > 4)
+    fail("surface pass: supersample must be 1..4, got ", options_.supersample);
+}
+
+SurfacePass::~SurfacePass() = default;
+
+SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera, SurfacePassStats* stats) {
+  using clock = std::chrono::steady_clock;
+  const auto start = clock::now();
+  auto lap = [t = start]() mutable {
+    glFinish();
+    const auto now = clock::now();
+    const double dt = std::chrono::duration<double>(now - t).count();
+    t = now;
+    return dt;
+  };
+  SurfacePassStats st;
+  SurfaceImage out;
+  if (!scene.shows_geometry()) {
+    out = render_background(scene.environment, camera);
+  } else {
+    if (!gpu_) gpu_ = std::make_unique<Gpu>(options_.gl);
+    Gpu& g = *gpu_;
+    g.context.ensure_current();
+    st.used_gl = true;
+    const int ss = options_.supersample, W = camera.width * ss, H = camera.height * ss;
+    g.resize(W, H, camera.width, camera.height);
+    Camera cam = camera;
+    cam.width = W, cam.height = H;
+    const auto [near_d, far_d] = clip_planes(scene, camera);
+    const Eigen::Matrix4f view = cam.view_matrix(), proj = cam.projection_matrix(near_d, far_d), vp = proj * view;
+
+    // Solids to the GPU, then their shadow map.
+    while (g.solids.size() < scene.solids.size()) g.solids.push_back(std::make_unique<GpuMesh>());
+    std::vector<SunShadow::Caster> casters;
+    for (size_t i = 0; i < scene.solids.size(); ++i) {
+      const SceneSolid& s = scene.solids[i];
+      if (!s.mesh || s.mesh->empty()) continue;
+      g.solids[i]->upload(*s.mesh);
+      SunShadow::Caster c{g.solids[i].get(), s.offset, {}};
+      for (const Vec3f& v : s.mesh->vertices) c.bounds.extend(v + s.offset);
+      casters.push_back(c);
+      st.triangles += s.mesh->triangle_count();
+    }
+    const bool shadows = g.shadow.render(casters, scene.environment.sun_direction);
+    if (scene.fluid && !scene.fluid->empty()) {
+      g.fluid.upload(*scene.fluid);
+      st.triangles += scene.fluid->triangle_count();
+    }
+    st.seconds_setup = lap();
+
+    const EnvBlock env = env_block(scene.environment, scene.water);
+    shaders::FrameBlock frame{};
+    put_matrix(frame.view_proj, vp);
+    put_matrix(frame.inv_view, view.inverse());
+    put_matrix(frame.inv_view_proj, vp.inverse());
+    for (int i = 0; i < 3; ++i) frame.eye[i] = cam.position[i];
+    frame.proj[0] = proj(0, 0), frame.proj[1] = proj(1, 1);
+    frame.viewport[0] = float(W), frame.viewport[1] = float(H);
+    frame.viewport[2] = 1.0f / float(W), frame.viewport[3] = 1.0f / float(H);
+    put_matrix(frame.sun_view_proj, g.shadow.view_proj());
+    frame.shadow[0] = shadows ? 1.0f : 0.0f;
+    frame.shadow[1] = 1.0f / SunShadow::kSize;
+    frame.shadow[3] = g.shadow.texel_size();
+    glBindBuffer(GL_UNIFORM_BUFFER, g.env_ubo);
+    glBufferData(GL_UNIFORM_BUFFER, sizeof env, &env, GL_STREAM_DRAW);
+    glBindBuffer(GL_UNIFORM_BUFFER, g.frame_ubo);
+    glBufferData(GL_UNIFORM_BUFFER, sizeof frame, &frame, GL_STREAM_DRAW);
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, g.env_ubo);
+    glBindBufferBase(GL_UNIFORM_BUFFER, 1, g.frame_ubo);
+    glActiveTexture(GL_TEXTURE3);
+    glBindTexture(GL_TEXTURE_2D, g.shadow.texture());
+    glActiveTexture(GL_TEXTURE0);
+    glViewport(0, 0, W, H);
+    glFrontFace(GL_CCW);
+
+    // Pass 1: ground, solids, then the sky where nothing was drawn (on the far plane, depth-tested:
+    // no pixel is shaded twice).
+    Gpu::bind_and_clear(g.a, true);
+    glDisable(GL_CULL_FACE);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    g.opaque.use();
+    const GLint offset_loc = glGetUniformLocation(g.opaque.id(), "u_offset");
+    const GLint albedo_loc = glGetUniformLocation(g.opaque.id(), "u_albedo");
+    const GLint ground_loc = glGetUniformLocation(g.opaque.id(), "u_ground");
+    const Environment& e = scene.environment;
+    if (e.ground && cam.position.y() > e.ground_height) {
+      const float ext = ground_extent(e);
+      g.ground.upload(make_quad_mesh(Vec3f(cam.position.x() - ext, e.ground_height, cam.position.z() - ext),
+                                     Vec3f(0, 0, 2 * ext), Vec3f(2 * ext, 0, 0)));
+      glUniform3f(offset_loc, 0, 0, 0);
+      glUniform1i(ground_loc, 1);
+      g.ground.draw();
+    }
+    glUniform1i(ground_loc, 0);
+    for (size_t i = 0; i < scene.solids.size(); ++i) {
+      const SceneSolid& s = scene.solids[i];
+      if (!s.mesh || s.mesh->empty()) continue;
+      glUniform3f(offset_loc, s.offset.x(), s.offset.y(), s.offset.z());
+      glUniform3f(albedo_loc, s.albedo.x(), s.albedo.y(), s.albedo.z());
+      g.solids[i]->draw();
+    }
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    g.sky.use();
+    glBindVertexArray(g.empty_vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
+    check_gl("drawing the opaque scene");
+    st.seconds_opaque = lap();
+
+    const bool water = scene.fluid && !scene.fluid->empty();
+    if (water) {
+      // Pass 2: the nearest back faces: where view rays leave the water.
+      Gpu::bind_and_clear(g.b, false);
+      glEnable(GL_CULL_FACE);
+      glCullFace(GL_FRONT);
+      g.back.use();
+      glProgramUniform3f(g.back.id(), glGetUniformLocation(g.back.id(), "u_offset"), 0, 0, 0);
+      g.fluid.draw();
+      // Pass 3: front faces over a copy of the opaque image.
+      g.copy(g.a_colour, g.c_colour), g.copy(g.a_depth, g.c_depth), g.copy(g.a_z, g.c_z);
+      g.c.bind();
+      glCullFace(GL_BACK);
+      g.water.use();
+      glProgramUniform3f(g.water.id(), glGetUniformLocation(g.water.id(), "u_offset"), 0, 0, 0);
+      const GLuint inputs[3] = {g.a_colour.id(), g.a_depth.id(), g.b_depth.id()};
+      for (GLuint unit = 0; unit < 3; ++unit) {
+        glActiveTexture(GL_TEXTURE0 + unit);
+        glBindTexture(GL_TEXTURE_2D, inputs[unit]);
+      }
+      glActiveTexture(GL_TEXTURE0);
+      g.fluid.draw();
+      glDisable(GL_CULL_FACE);
+      check_gl("drawing the water");
+    }
+    st.seconds_water = lap();
+    // Resolve and pack float bits into RGBA8 planes: llvmpipe reads those back as plain copies, while
+    // float targets take a slow conversion path (about 130 ms for 1920x1080 RGBA floats).
+    g.p.bind();
+    glViewport(0, 0, camera.width, camera.height);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_DITHER);  // the bytes are float bits, not colours
+    g.pack.use();
+    const GLuint inputs[3] = {water ? g.c_colour.id() : g.a_colour.id(), water ? g.c_depth.id() : g.a_depth.id(),
+                              g.a_depth.id()};
+    for (GLuint unit = 0; unit < 3; ++unit) {
+      glActiveTexture(GL_TEXTURE0 + unit);
+      glBindTexture(GL_TEXTURE_2D, inputs[unit]);
+    }
+    glActiveTexture(GL_TEXTURE0);
+    glUniform1i(glGetUniformLocation(g.pack.id(), "u_ss"), ss);
+    glBindVertexArray(g.empty_vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    const size_t n = size_t(camera.width) * camera.height;
+    g.packed.resize(5 * n);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, g.p.id());
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    for (int k = 0; k < 5; ++k) {
+      glReadBuffer(GLenum(GL_COLOR_ATTACHMENT0 + k));
+      glReadPixels(0, 0, camera.width, camera.height, GL_RGBA, GL_UNSIGNED_BYTE, g.packed.data() + size_t(k) * n);
+    }
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    check_gl("reading the surface pass back");
+    unpack(g.packed, camera.width, camera.height, out);
+    st.seconds_readback = lap();
+  }
+  st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (stats) *stats = st;
+  return out;
+}
+
+SurfaceImage render_background(const Environment& env, const Camera& camera) {
+  SurfaceImage out;
+  out.colour = ImageRGBf(camera.width, camera.height);
+  out.depth.assign(out.colour.pixel_count(), kInf);
+  Vec3f right, up, back;
+  camera.basis(right, up, back);
+  const float ext = ground_extent(env);
+  for (int y = 0; y < camera.height; ++y)
+    for (int x = 0; x < camera.width; ++x) {
+      const Ray r = camera.ray(float(x) + 0.5f, float(y) + 0.5f);
+      Vec3f c = env.sky(r.direction, true);
+      float depth = kInf;
+      if (env.ground && r.direction.y() < 0.0f && r.origin.y() > env.ground_height) {
+        const Vec3f p = r.origin + r.direction * ((env.ground_height - r.origin.y()) / r.direction.y());
+        if (std::abs(p.x() - r.origin.x()) < ext && std::abs(p.z() - r.origin.z()) < ext) {
+          c = env.ground_radiance(p, r.origin);
+          depth = (r.origin - p).dot(back);
+        }
+      }
+      out.colour.at(x, y) = c;
+      out.depth[size_t(y) * camera.width + x] = depth;
+    }
+  out.opaque_depth = out.depth;
+  return out;
+}
+
+}  // namespace spume

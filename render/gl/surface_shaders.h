@@ -1,0 +1,31 @@
+#pragma once
+// GLSL 4.50 core sources of the surface pass, embedded as strings. Every program sees the blocks
+// `Env` (binding 0, environment.h) and `Frame` (binding 1, FrameBlock below) and writes linear RGB to
+// colour attachment 0 and the linear view depth (m along the view axis) to attachment 1.
+#include <string>
+
+namespace spume::shaders {
+
+// std140 mirror of the GLSL `Frame` block.
+struct FrameBlock {
+  float view_proj[16];      // world -> clip, column-major
+  float inv_view[16];       // view -> world
+  float inv_view_proj[16];  // clip -> world
+  float eye[4];             // camera position, m
+  float proj[4];            // x = P00, y = P11 (for view rays from NDC)
+  float viewport[4];        // x, y = size in pixels; z, w = reciprocals
+  float sun_view_proj[16];  // world -> sun shadow clip space
+  float shadow[4];          // x = on, y = shadow-map texel in uv, w = texel in m
+};
+
+std::string sky_vertex();       // full-screen triangle, no inputs
+std::string sky_fragment();     // env_sky along the pixel's view ray; depth +inf
+std::string mesh_vertex();      // world position, normal, view depth; uniform vec3 u_offset
+std::string opaque_fragment();  // diffuse solids (u_albedo) or the ground plane (u_ground = 1)
+std::string depth_fragment();   // linear depth only (water back faces)
+std::string water_fragment();   // the water surface; samplers at units 0, 1, 2
+// Box-filters u_ss x u_ss texels of the final targets (colour averaged, depths: the nearest) and
+// writes each of the five floats as its four bytes (exact bits) to five RGBA8 attachments.
+std::string pack_fragment();
+
+}  // namespace spume::shaders

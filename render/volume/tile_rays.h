@@ -1,0 +1,47 @@
+#pragma once
+// The eye rays of one 16x16 pixel tile: jittered sample positions, the diffuse bounds' entry and
+// exit, the first opaque hit (which ends the ray) and the stretches in water.
+#include <cstdint>
+#include <vector>
+
+#include "camera/camera.h"
+#include "water_path.h"
+
+namespace spume {
+
+class SurfaceScene;
+
+// Offset of sample `sample` inside pixel `pixel` (row-major index), in [0, 1)^2: the centre for
+// one sample per pixel, else a counter-based Philox draw of (seed, frame, pixel, sample), so every
+// pixel gets the same rays whatever thread renders it.
+void sample_offset(uint64_t seed, int frame, uint64_t pixel, uint32_t sample, int samples_per_pixel, float& u, float& v);
+
+struct TileRay {
+  Vec3f direction_f;      // Camera::ray's float direction (for Embree)
+  Vec3d direction;        // the same, normalised in double (for exact chords)
+  double t_in = 1.0;      // m; entry into the diffuse bounds (>= 0); also the intervals' reference
+  double t_out = 0.0;     // m; exit from the bounds or the first opaque hit, whichever is nearer
+  uint32_t water_begin = 0, water_end = 0;  // its WaterSegments in TileRays::water (relative to t_in)
+
+  bool misses() const { return !(t_in < t_out); }
+};
+
+struct TileRays {
+  int x0 = 0, y0 = 0, w = 0, h = 0, spp = 1;  // tile origin and size in pixels
+  std::vector<TileRay> rays;                 // index (ly * w + lx) * spp + sample
+  std::vector<WaterSegment> water;
+  std::vector<WaterCrossing> crossings;      // scratch
+};
+
+struct TileRayParams {
+  const Camera* camera;
+  Vec3d bounds_lo, bounds_hi;  // m; every drawn sphere lies inside
+  const SurfaceScene* surfaces;
+  uint64_t seed;
+  int frame;
+  int samples_per_pixel;
+};
+
+void make_tile_rays(const TileRayParams& p, int x0, int y0, int w, int h, TileRays& out);
+
+}  // namespace spume

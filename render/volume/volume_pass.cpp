@@ -1,0 +1,322 @@
+#include "volume_pass.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <optional>
+
+#include <tbb/enumerable_thread_specific.h>
+
+#include "absorption.h"
+#include "core/error.h"
+#include "core/parallel.h"
+#include "embree_scene.h"
+#include "point_grid.h"
+#include "screen_bins.h"
+#include "surface/triangle_mesh.h"
+#include "tile_rays.h"
+
+namespace spume {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+constexpr int kTile = ScreenBins::kTile;
+
+bool finite3(const Vec3f& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
+
+void validate(const DiffuseFrame& frame, const Camera& camera, const VolumeSettings& s) {
+  for (int k = 0; k < kDiffuseTypeCount; ++k) {
+    const DiffuseLook& l = s.look[size_t(k)];
+    const char* name = to_string(DiffuseType(k));
+    if (!std::isfinite(l.radius) || l.radius < 0.0f) fail("volume pass: ", name, " radius ", l.radius, " m: must be >= 0 (0 = not drawn)");
+    if (!finite3(l.color)) fail("volume pass: ", name, " colour is not finite");
+  }
+  if (!std::isfinite(s.alpha) || s.alpha < 0.0f) fail("volume pass: alpha ", s.alpha, " 1/m: must be >= 0");
+  if (!finite3(s.water_sigma) || s.water_sigma.minCoeff() < 0.0f) fail("volume pass: water sigma must be >= 0 per channel (1/m)");
+  if (s.samples_per_pixel < 1 || s.samples_per_pixel > 4096) fail("volume pass: samples per pixel ", s.samples_per_pixel, " outside 1..4096");
+  if (!std::isfinite(s.march_step)) fail("volume pass: march step is not finite");
+  if (camera.width <= 0 || camera.height <= 0) fail("volume pass: image size ", camera.width, "x", camera.height, " is empty");
+  if (frame.types.size() != frame.positions.size())
+    fail("volume pass: frame ", frame.index, " has ", frame.positions.size(), " positions but ", frame.types.size(), " types");
+}
+
+// Everything the tile workers share, read-only.
+struct Pass {
+  const DiffuseFrame* frame;
+  const Camera* camera;
+  const VolumeSettings* settings;
+  VolumeShading shading;
+  std::array<double, kDiffuseTypeCount> r2{};
+  TileRayParams ray_params;
+  const ScreenBins* bins = nullptr;
+  const SphereHitScene* hits = nullptr;
+  const std::array<PointGrid, kDiffuseTypeCount>* grids = nullptr;
+  double dx = 0.0;
+};
+
+struct Scratch {
+  TileRays tile;
+  std::vector<std::vector<Interval>> lists;  // per ray of the tile
+  std::vector<BinnedSphere> sorted;
+  std::vector<uint32_t> bucket;
+  std::vector<SphereHitScene::Hit> hits;
+  std::vector<Interval> intervals;
+};
+
+WaterView water_of(const TileRays& t, const TileRay& r) {
+  return {t.water.data() + r.water_begin, size_t(r.water_end - r.water_begin)};
+}
+
+// The tile's spheres in near-to-far order (buckets about a radius deep; particle order within), so
+// each ray's chords arrive almost sorted by entry and sort_intervals is about one pass.
+void depth_order(const BinnedSphere* b, const BinnedSphere* e, const Camera& cam, Scratch& s) {
+  const size_t n = size_t(e - b);
+  Vec3f right, up, back;
+  cam.basis(right, up, back);
+  float zmin = INFINITY, zmax = -INFINITY;
+  for (const BinnedSphere* p = b; p != e; ++p) {
+    const float z = -(p->centre() - cam.position).dot(back);
+    zmin = std::min(zmin, z), zmax = std::max(zmax, z);
+  }
+  const size_t buckets = std::clamp<size_t>(n, 1, 4096);
+  const float scale = zmax > zmin ? float(buckets) / (zmax - zmin) : 0.0f;
+  auto bucket_of = [&](const BinnedSphere& p) {
+    const float z = -(p.centre() - cam.position).dot(back);
+    return std::min(buckets - 1, size_t((z - zmin) * scale));
+  };
+  s.bucket.assign(buckets + 1, 0);
+  for (const BinnedSphere* p = b; p != e; ++p) ++s.bucket[bucket_of(*p) + 1];
+  for (size_t i = 0; i < buckets; ++i) s.bucket[i + 1] += s.bucket[i];
+  s.sorted.resize(n);
+  for (const BinnedSphere* p = b; p != e; ++p) s.sorted[s.bucket[bucket_of(*p)]++] = *p;
+}
+
+size_t exact_screen_bins(const Pass& pass, size_t tile, Scratch& s, std::vector<RaySample>& out) {
+  TileRays& t = s.tile;
+  const int spp = t.spp;
+  if (s.lists.size() < t.rays.size()) s.lists.resize(t.rays.size());
+  for (size_t i = 0; i < t.rays.size(); ++i) s.lists[i].clear();
+  depth_order(pass.bins->begin(tile), pass.bins->end(tile), *pass.camera, s);
+  const Vec3d o = pass.camera->position.cast<double>();
+  size_t found = 0;
+  for (const BinnedSphere& sp : s.sorted) {
+    const Vec3d oc = sp.centre().cast<double>() - o;
+    const double oc2 = oc.squaredNorm(), r2 = pass.r2[sp.type()];
+    for (int ly = sp.y0(); ly <= sp.y1() && ly < t.h; ++ly)
+      for (int lx = sp.x0(); lx <= sp.x1() && lx < t.w; ++lx)
+        for (int k = 0; k < spp; ++k) {
+          const size_t ri = (size_t(ly) * size_t(t.w) + size_t(lx)) * size_t(spp) + size_t(k);
+          const TileRay& r = t.rays[ri];
+          double t0, t1;
+          if (r.misses() || !ray_sphere_chord(oc, oc2, r.direction, r2, t0, t1)) continue;
+          t0 = std::max(t0, r.t_in), t1 = std::min(t1, r.t_out);
+          if (t1 > t0) s.lists[ri].push_back({float(t0 - r.t_in), float(t1 - r.t_in), sp.type()});
+        }
+  }
+  for (size_t i = 0; i < t.rays.size(); ++i) {
+    std::vector<Interval>& l = s.lists[i];
+    found += l.size();
+    sort_intervals(l.data(), l.size());
+    out[i] = absorb_intervals(l.data(), l.size(), pass.shading, water_of(t, t.rays[i]));
+  }
+  return found;
+}
+
+size_t exact_embree(const Pass& pass, Scratch& s, std::vector<RaySample>& out) {
+  const TileRays& t = s.tile;
+  const Vec3d o = pass.camera->position.cast<double>();
+  size_t found = 0;
+  for (size_t i = 0; i < t.rays.size(); ++i) {
+    const TileRay& r = t.rays[i];
+    if (r.misses()) continue;
+    // Slightly wider than [t_in, t_out]: Embree's float t's only nominate spheres; chords are exact.
+    const float t_near = float(std::max(0.0, r.t_in * (1.0 - 1e-5) - 1e-6));
+    const float t_far = std::isfinite(r.t_out) ? float(r.t_out * (1.0 + 1e-5) + 1e-6) : INFINITY;
+    pass.hits->collect(pass.camera->position, r.direction_f, t_near, t_far, s.hits);
+    s.intervals.clear();
+    for (const SphereHitScene::Hit& h : s.hits) {
+      const Vec3d oc = h.centre.cast<double>() - o;
+      double t0, t1;
+      if (!ray_sphere_chord(oc, oc.squaredNorm(), r.direction, pass.r2[h.type], t0, t1)) continue;
+      t0 = std::max(t0, r.t_in), t1 = std::min(t1, r.t_out);
+      if (t1 > t0) s.intervals.push_back({float(t0 - r.t_in), float(t1 - r.t_in), h.type});
+    }
+    found += s.intervals.size();
+    std::sort(s.intervals.begin(), s.intervals.end(), [](const Interval& a, const Interval& b) { return interval_before(a, b); });
+    out[i] = absorb_intervals(s.intervals.data(), s.intervals.size(), pass.shading, water_of(t, r));
+  }
+  return found;
+}
+
+size_t march(const Pass& pass, Scratch& s, std::vector<RaySample>& out) {
+  const TileRays& t = s.tile;
+  const Vec3d o = pass.camera->position.cast<double>();
+  size_t samples = 0;
+  for (size_t i = 0; i < t.rays.size(); ++i) {
+    const TileRay& r = t.rays[i];
+    if (r.misses()) continue;
+    MarchAccumulator acc(pass.shading, water_of(t, r), pass.dx);
+    const size_t steps = size_t(std::floor((r.t_out - r.t_in) / pass.dx));  // s of Eq. 9
+    for (size_t j = 0; j <= steps; ++j) {
+      const double tj = r.t_in + double(j) * pass.dx;
+      const Vec3d x = o + tj * r.direction;
+      unsigned mask = 0;
+      for (size_t k = 0; k < size_t(kDiffuseTypeCount); ++k)
+        if ((*pass.grids)[k].covers(x)) mask |= 1u << k;
+      acc.add(mask, tj - r.t_in);
+    }
+    samples += steps + 1;
+    out[i] = acc.finish();
+  }
+  return samples;
+}
+
+// Box around every drawn sphere; counts them. Fixed chunks, exact min/max: deterministic.
+Aabb drawn_bounds(const DiffuseFrame& frame, const std::array<float, kDiffuseTypeCount>& radius, size_t& count) {
+  const size_t n = frame.size(), chunks = std::clamp<size_t>(n / 65536, 1, 64);
+  std::vector<Aabb> box(chunks);
+  std::vector<size_t> drawn(chunks, 0), bad(chunks, SIZE_MAX);
+  parallel_for(chunks, 1, [&](size_t c0, size_t c1) {
+    for (size_t c = c0; c < c1; ++c)
+      for (size_t i = c * n / chunks; i < (c + 1) * n / chunks; ++i) {
+        const size_t type = size_t(frame.types[i]);
+        if (type >= size_t(kDiffuseTypeCount)) {
+          bad[c] = std::min(bad[c], i);
+          continue;
+        }
+        const float r = radius[type];
+        if (!(r > 0.0f)) continue;
+        const Vec3f& p = frame.positions[i];
+        if (!finite3(p)) {
+          bad[c] = std::min(bad[c], i);
+          continue;
+        }
+        box[c].min = box[c].min.cwiseMin(p - Vec3f::Constant(r));
+        box[c].max = box[c].max.cwiseMax(p + Vec3f::Constant(r));
+        ++drawn[c];
+      }
+  });
+  Aabb all;
+  count = 0;
+  for (size_t c = 0; c < chunks; ++c) {
+    if (bad[c] != SIZE_MAX)
+      fail("volume pass: frame ", frame.index, " particle ", bad[c], " has a non-finite position or a type outside 0..2");
+    if (drawn[c]) all.extend(box[c]);
+    count += drawn[c];
+  }
+  return all;
+}
+
+}  // namespace
+
+bool volume_pass_needed(const DiffuseFrame& frame, const VolumeSettings& settings) {
+  const auto counts = frame.count_by_type();
+  for (int k = 0; k < kDiffuseTypeCount; ++k)
+    if (settings.drawn(DiffuseType(k)) && counts[size_t(k)] > 0) return true;
+  return false;
+}
+
+double march_step(const VolumeSettings& settings) {
+  if (settings.march_step > 0.0f) return settings.march_step;
+  float r = INFINITY;
+  for (const DiffuseLook& l : settings.look)
+    if (l.radius > 0.0f) r = std::min(r, l.radius);
+  return std::isfinite(r) ? 0.5 * double(r) : 0.0;
+}
+
+VolumeImage render_volume(const DiffuseFrame& frame, const Camera& camera, const VolumeSettings& settings,
+                          const VolumeSurfaces& surfaces, VolumeStats* stats) {
+  validate(frame, camera, settings);
+  VolumeStats st;
+  VolumeImage img;
+  img.width = camera.width, img.height = camera.height;
+  img.transmittance.assign(img.pixel_count(), 1.0f);
+  img.color.assign(img.pixel_count(), Vec3f::Zero());
+
+  std::array<float, kDiffuseTypeCount> radius{};
+  for (int k = 0; k < kDiffuseTypeCount; ++k) radius[size_t(k)] = settings.look[size_t(k)].radius;
+  const auto build_start = Clock::now();
+  const Aabb bounds = drawn_bounds(frame, radius, st.spheres);
+  if (st.spheres == 0) {
+    st.skipped = true;
+    if (stats) *stats = st;
+    return img;
+  }
+
+  Pass pass;
+  pass.frame = &frame, pass.camera = &camera, pass.settings = &settings;
+  pass.shading.alpha = settings.alpha;
+  pass.shading.water_sigma = settings.water_sigma.cast<double>();
+  for (size_t k = 0; k < size_t(kDiffuseTypeCount); ++k) {
+    pass.shading.color[k] = settings.look[k].color.cast<double>();
+    pass.r2[k] = double(radius[k]) * double(radius[k]);
+  }
+  const int spp = settings.samples_per_pixel;
+  std::optional<SurfaceScene> surface_scene;
+  if ((surfaces.water && !surfaces.water->empty()) || (surfaces.solids && !surfaces.solids->empty()))
+    surface_scene.emplace(surfaces);
+  // Bounds a hair larger than the spheres: float centres and radii, double rays.
+  const Vec3d pad = Vec3d::Constant(1e-6 * (1.0 + (bounds.max - bounds.min).cast<double>().norm()));
+  pass.ray_params = {&camera, bounds.min.cast<double>() - pad, bounds.max.cast<double>() + pad,
+                     surface_scene ? &*surface_scene : nullptr, settings.seed, frame.index, spp};
+  std::unique_ptr<ScreenBins> bins;
+  std::unique_ptr<SphereHitScene> hit_scene;
+  std::unique_ptr<std::array<PointGrid, kDiffuseTypeCount>> grids;
+  if (settings.integrator == VolumeIntegrator::March) {
+    pass.dx = march_step(settings);
+    // Guard against a step that would take practically forever (e.g. a typo in the scene file).
+    const double diagonal = (bounds.max - bounds.min).cast<double>().norm();
+    if (!(pass.dx > 0.0) || diagonal / pass.dx > 1e7)
+      fail("volume pass: march step ", pass.dx, " m is too small for diffuse bounds ", diagonal, " m across (at most 1e7 steps per ray)");
+    grids = std::make_unique<std::array<PointGrid, kDiffuseTypeCount>>();
+    for (int k = 0; k < kDiffuseTypeCount; ++k)
+      if (radius[size_t(k)] > 0.0f) (*grids)[size_t(k)] = PointGrid(frame, DiffuseType(k), radius[size_t(k)]);
+    pass.grids = grids.get();
+  } else if (settings.exact_method == ExactMethod::ScreenBins) {
+    const SphereProjector projector(camera, spp == 1 ? 0.5 : 0.0, spp == 1 ? 0.5 : 1.0);
+    bins = std::make_unique<ScreenBins>(frame, radius, projector, camera.width, camera.height);
+    pass.bins = bins.get();
+  } else {
+    hit_scene = std::make_unique<SphereHitScene>(frame, radius);
+    pass.hits = hit_scene.get();
+  }
+  st.build_seconds = seconds_since(build_start);
+
+  const auto trace_start = Clock::now();
+  const int tiles_x = (camera.width + kTile - 1) / kTile, tiles_y = (camera.height + kTile - 1) / kTile;
+  tbb::enumerable_thread_specific<Scratch> scratch;
+  std::atomic<size_t> found{0};
+  parallel_for(size_t(tiles_x) * size_t(tiles_y), 1, [&](size_t b, size_t e) {
+    Scratch& s = scratch.local();
+    std::vector<RaySample> samples;
+    for (size_t tile = b; tile < e; ++tile) {
+      const int x0 = int(tile % size_t(tiles_x)) * kTile, y0 = int(tile / size_t(tiles_x)) * kTile;
+      const int w = std::min(kTile, camera.width - x0), h = std::min(kTile, camera.height - y0);
+      make_tile_rays(pass.ray_params, x0, y0, w, h, s.tile);
+      samples.assign(s.tile.rays.size(), RaySample{});
+      size_t n = 0;
+      if (pass.grids) n = march(pass, s, samples);
+      else if (pass.bins) n = exact_screen_bins(pass, tile, s, samples);
+      else n = exact_embree(pass, s, samples);
+      found += n;
+      for (int ly = 0; ly < h; ++ly)
+        for (int lx = 0; lx < w; ++lx) {
+          PixelAverage avg;
+          for (int k = 0; k < spp; ++k) avg.add(samples[(size_t(ly) * size_t(w) + size_t(lx)) * size_t(spp) + size_t(k)]);
+          const size_t p = size_t(y0 + ly) * size_t(camera.width) + size_t(x0 + lx);
+          avg.finish(img.transmittance[p], img.color[p]);
+        }
+    }
+  });
+  st.trace_seconds = seconds_since(trace_start);
+  st.rays = img.pixel_count() * size_t(spp);
+  st.intervals = found;
+  if (stats) *stats = st;
+  return img;
+}
+
+}  // namespace spume

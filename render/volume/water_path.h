@@ -1,0 +1,32 @@
+#pragma once
+// The stretches of an eye ray that lie in water, from its crossings of the water surface, and the
+// dimming exp(-sigma_w * w(t)) of what is seen at distance t after travelling w(t) in water.
+#include <vector>
+
+#include "core/vec.h"
+
+namespace spume {
+
+struct WaterCrossing {
+  double t;       // m along the ray, same reference as the intervals
+  bool entering;  // the ray goes from outside to inside the water (dot(outward normal, d) < 0)
+};
+
+struct WaterSegment {
+  double t0, t1;  // m; the ray is in water on [t0, t1]; t1 may be +inf
+};
+
+// Crossings in any order. The state before the first crossing is "outside" unless that crossing
+// leaves the water (camera under water: its segment starts at origin_t, the ray origin in the
+// crossings' reference). Repeated crossings of the same sense (a ray through a
+// shared mesh edge reports both triangles) are ignored, so duplicates do no harm.
+void water_segments(std::vector<WaterCrossing>& crossings, double origin_t, std::vector<WaterSegment>& out);
+
+// Distance travelled in water from the ray origin to t. Segments sorted and disjoint.
+double water_distance(const WaterSegment* seg, size_t n, double t);
+
+// Integral of exp(-sigma * w(t)) dt over [a, b], per channel (sigma in 1/m): the length [a, b]
+// contributes to the colour after dimming. Equals b - a when n == 0.
+Vec3d dimmed_length(const WaterSegment* seg, size_t n, const Vec3d& sigma, double a, double b);
+
+}  // namespace spume
