@@ -10,45 +10,17 @@
 #include <numeric>
 
 #include "core/error.h"
+#include "io_test_support.h"
 #include "io/bgeo.h"
 #include "io/io_bytes.h"
 
 namespace fs = std::filesystem;
 using namespace spume;
+using namespace spume::io_test;
 
 namespace {
 
 const fs::path kRealFrame = fs::path(SPUME_TEST_DATA_DIR) / "splishsplash_rest_30192.bgeo";
-
-std::string error_of(const std::function<void()>& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected spume::Error";
-  return "";
-}
-
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path = fs::temp_directory_path() / ("spume_io_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-  fs::path write(const std::string& name, const std::string& bytes) const {
-    std::ofstream(path / name, std::ios::binary) << bytes;
-    return path / name;
-  }
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
 
 // Big-endian bytes, written independently of the reader's helpers.
 struct Be {

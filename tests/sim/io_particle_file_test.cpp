@@ -6,6 +6,7 @@
 #include <functional>
 
 #include "core/error.h"
+#include "io_test_support.h"
 #include "io/bgeo.h"
 #include "io/particle_file.h"
 #include "io/ply.h"
@@ -14,31 +15,11 @@
 
 namespace fs = std::filesystem;
 using namespace spume;
+using namespace spume::io_test;
 
 namespace {
 
 const fs::path kRealFrame = fs::path(SPUME_TEST_DATA_DIR) / "splishsplash_rest_30192.bgeo";
-
-std::string error_of(const std::function<void()>& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected spume::Error";
-  return "";
-}
-
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path = fs::temp_directory_path() / ("spume_io_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
 
 FluidFrame sample() {
   FluidFrame f;

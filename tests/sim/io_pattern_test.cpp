@@ -6,34 +6,14 @@
 #include <unistd.h>
 
 #include "core/error.h"
+#include "io_test_support.h"
 #include "io/frame_pattern.h"
 
 namespace fs = std::filesystem;
 using namespace spume;
+using namespace spume::io_test;
 
 namespace {
-
-std::string error_of(const std::function<void()>& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected spume::Error";
-  return "";
-}
-
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path = fs::temp_directory_path() / ("spume_io_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-  void touch(const std::string& name) const { std::ofstream(path / name) << "x"; }
-};
 
 }  // namespace
 

@@ -8,49 +8,14 @@
 #include <functional>
 
 #include "core/error.h"
+#include "io_test_support.h"
 #include "io/vtk.h"
 
 namespace fs = std::filesystem;
 using namespace spume;
+using namespace spume::io_test;
 
 namespace {
-
-std::string error_of(const std::function<void()>& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected spume::Error";
-  return "";
-}
-
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path = fs::temp_directory_path() / ("spume_io_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-  fs::path write(const std::string& name, const std::string& bytes) const {
-    std::ofstream(path / name, std::ios::binary) << bytes;
-    return path / name;
-  }
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
-template <typename T>
-void be(std::string& out, T v) {
-  char b[sizeof(T)];
-  std::memcpy(b, &v, sizeof(T));
-  for (size_t i = 0; i < sizeof(T); ++i) out += b[sizeof(T) - 1 - i];
-}
 
 template <typename T>
 std::string le_bytes(std::initializer_list<T> values) {
