@@ -29,7 +29,7 @@ void sample_cylinder(const Vec3f& x_f, const Vec3f& v_f, float dt, float radius,
                      Vec3f& x_d, Vec3f& v_d);
 
 // Appends this step's new particles to `out` (ids, positions, velocities, lifetimes; types are set by
-// the next classification). `step` is the global diffuse step; `existing` the particles alive now.
+// the next classification). `step` is the global diffuse step; the budget counts out.size() as alive.
 EmissionResult emit_diffuse(const FluidStepState& state, const FormationPotentials& potentials,
                             const DiffuseParams& params, uint32_t step, float dt, float particle_radius,
                             DiffuseFrame& out);

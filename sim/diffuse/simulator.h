@@ -55,8 +55,8 @@ class DiffuseSimulator {
   const DiffuseSetup& setup() const { return setup_; }
 
  private:
-  // One diffuse step over [t, t + dt] at fraction s of the frame pair. Returns nothing; updates
-  // particles_ and the pending counters.
+  // classify(): grid over the fluid at t, neighbour counts and fluid velocities at every diffuse
+  // particle, types. step(): advection, solids, dissolution, emission, compaction over [t, t + dt].
   void classify(const FluidStepState& state, uint32_t step, bool sample_velocity);
   void step(const FluidStepState& state, uint32_t step, float dt);
 

@@ -134,8 +134,8 @@ TEST_F(SpumeCommand, BadFluidSettingsAreRejected) {
   }
 }
 
-TEST_F(SpumeCommand, CorruptOrNaNFluidFileIsNamedAndStopsTheRun) {
-  // Frame 2 truncated: frame 1's classification is written, then the run stops naming the file.
+TEST_F(SpumeCommand, TruncatedFluidFileIsNamedAndNothingIsHalfWritten) {
+  // Frame 2 truncated: the run stops naming the file and leaves no temporary file behind.
   const fs::path bad = dir / "cache/ParticleData_Fluid_2.bgeo";
   fs::resize_file(bad, fs::file_size(bad) / 2);
   write_scene(R"({"fluid": {"files": "cache/ParticleData_Fluid_%d.bgeo", "radius": 0.02}})");
@@ -144,7 +144,6 @@ TEST_F(SpumeCommand, CorruptOrNaNFluidFileIsNamedAndStopsTheRun) {
   EXPECT_NE(r.output.find("ParticleData_Fluid_2.bgeo"), std::string::npos) << r.output;
   for (const auto& entry : fs::recursive_directory_iterator(dir / "out"))
     EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();  // nothing half-written
-
 }
 
 // Hand-written ASCII PLY frames: the second has `second_frame_body` as its vertices.
