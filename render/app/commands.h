@@ -6,6 +6,9 @@ namespace spume {
 
 // Each returns the process exit status; errors are thrown as spume::Error and reported by main.
 int command_simulate(const std::vector<std::string>& args);
+int command_render(const std::vector<std::string>& args);
+int command_run(const std::vector<std::string>& args);
+int command_lookdev(const std::vector<std::string>& args);
 int command_info(const std::vector<std::string>& args);
 
 }  // namespace spume

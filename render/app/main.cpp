@@ -13,7 +13,10 @@ namespace {
 constexpr const char* kUsage =
     "usage: spume COMMAND [options]\n"
     "commands:\n"
-    "  simulate SCENE    fluid frames -> diffuse caches (spray, foam, bubbles)\n"
+    "  run SCENE         simulate what is missing, then render the PNG frames\n"
+    "  simulate SCENE    fluid frames -> diffuse caches (spray, foam, bubbles); solver scenes: fluid first\n"
+    "  render SCENE      caches -> PNG frames (never simulates)\n"
+    "  lookdev SCENE     one frame for every combination of render keys, as a labelled contact sheet\n"
     "  info FILE...      what a particle file or cache holds\n"
     "run 'spume COMMAND' without arguments for its options.\n";
 
@@ -25,7 +28,11 @@ struct Command {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Command commands[] = {{"simulate", spume::command_simulate}, {"info", spume::command_info}};
+  const Command commands[] = {{"run", spume::command_run},
+                             {"simulate", spume::command_simulate},
+                             {"render", spume::command_render},
+                             {"lookdev", spume::command_lookdev},
+                             {"info", spume::command_info}};
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
     std::fputs(kUsage, argc < 2 ? stderr : stdout);
     return argc < 2 ? 2 : 0;

@@ -34,6 +34,12 @@ const Json* ParamReader::find(const std::string& key) const {
   return it == obj.end() ? nullptr : &*it;
 }
 
+Json ParamReader::raw(const std::string& key) const {
+  const Json& obj = object();
+  auto it = obj.find(key);
+  return it == obj.end() ? Json() : *it;
+}
+
 bool ParamReader::has(const std::string& key) const { return find(key) != nullptr; }
 
 void ParamReader::fail_at(const std::string& key, const std::string& message) const {

@@ -56,6 +56,10 @@ class ParamReader {
   ParamReader child(const std::string& key) const;           // {} when absent
   std::vector<ParamReader> array_of_objects(const std::string& key) const;
 
+  // The JSON under `key` as written (null when absent), without recording a lookup: for fingerprints
+  // of what produced a cache, never for reading values.
+  Json raw(const std::string& key) const;
+
   // Fails with the message prefixed by the source file and this key's path.
   [[noreturn]] void fail_at(const std::string& key, const std::string& message) const;
 

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <fstream>
 
+#include "cache_state.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/progress.h"
@@ -21,7 +22,10 @@ std::string frame_name(const char* prefix, int frame, const char* extension) {
   return buffer;
 }
 
-std::vector<int> frames_to_run(const SimScene& scene, const FluidSource& source, const SimulateOptions& options) {
+}  // namespace
+
+std::vector<int> diffuse_frames_to_run(const SimScene& scene, const FluidSource& source,
+                                       const SimulateOptions& options) {
   std::vector<int> available = source.frame_numbers();
   const auto range = options.frames ? options.frames : scene.frames;
   if (!range) return available;
@@ -32,6 +36,8 @@ std::vector<int> frames_to_run(const SimScene& scene, const FluidSource& source,
     fail("frames ", range->first, "-", range->second, ": none of them exist in ", source.describe());
   return chosen;
 }
+
+namespace {
 
 void write_stats_header(std::ostream& out) {
   out << "frame,time,fluid,spray,foam,bubbles,generated,dissolved,removed,dropped";
@@ -56,9 +62,19 @@ std::filesystem::path diffuse_cache_path(const std::filesystem::path& scene_out,
 
 SimulateSummary run_simulation(const SimScene& scene, FluidSource& source, const SimulateOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  const std::vector<int> frames = frames_to_run(scene, source, options);
+  const std::vector<int> frames = diffuse_frames_to_run(scene, source, options);
   SimulateSummary summary;
   summary.out_dir = options.out_root / scene.name;
+  const std::filesystem::path cache_dir = summary.out_dir / "diffuse";
+  const std::string fingerprint = scene.diffuse_fingerprint + str("\nfirst frame ", frames[0]);
+  std::vector<std::filesystem::path> paths;
+  for (int f : frames) paths.push_back(diffuse_cache_path(summary.out_dir, f));
+  if (!options.force && cache_is_current(cache_dir, fingerprint, paths)) {
+    summary.reused = true;
+    summary.frames = int(frames.size());
+    return summary;
+  }
+  mark_cache_started(cache_dir);
 
   Progress progress("simulate " + scene.name, frames.size(), options.quiet);
   FluidFrame current = with_context(str("frame ", frames[0]), [&] { return source.load(frames[0]); });
@@ -111,6 +127,7 @@ SimulateSummary run_simulation(const SimScene& scene, FluidSource& source, const
     if (next) current = std::move(*next);
   }
   write_file_atomically(summary.out_dir / "stats.csv", [&](std::ostream& out) { out << stats_text; });
+  mark_cache_complete(cache_dir, fingerprint);
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   progress.finish(str("max ", summary.max_diffuse, " diffuse particles -> ", summary.out_dir.string()));
   return summary;

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <optional>
 #include <utility>
+#include <vector>
 
 #include "scene/fluid_source.h"
 #include "scene/sim_scene.h"
@@ -17,9 +18,11 @@ struct SimulateOptions {
   std::filesystem::path out_root = "out";
   std::optional<std::pair<int, int>> frames;  // inclusive; overrides the scene's range
   bool quiet = false;
+  bool force = false;  // simulate even when the diffuse caches are current (cache_state.h)
 };
 
 struct SimulateSummary {
+  bool reused = false;  // the caches were current; nothing ran
   int frames = 0;
   size_t max_diffuse = 0;
   uint64_t generated = 0;
@@ -28,6 +31,10 @@ struct SimulateSummary {
 };
 
 std::filesystem::path diffuse_cache_path(const std::filesystem::path& scene_out, int frame);
+
+// The frames the stage covers: the source's frames within options.frames or else the scene's range.
+std::vector<int> diffuse_frames_to_run(const SimScene& scene, const FluidSource& source,
+                                       const SimulateOptions& options);
 
 SimulateSummary run_simulation(const SimScene& scene, FluidSource& source, const SimulateOptions& options);
 

@@ -7,6 +7,14 @@
 namespace spume {
 namespace {
 
+// Bump when a change of spume's code makes old caches wrong.
+constexpr int kCacheGeneration = 1;
+
+std::string fingerprint(Json keys) {
+  keys["spume_cache_generation"] = kCacheGeneration;
+  return keys.dump();  // nlohmann::json objects are key-sorted: equal settings, equal text
+}
+
 bool is_name_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'; }
 
 }  // namespace
@@ -36,6 +44,10 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
     const std::filesystem::path pattern(*files);
     scene.file_pattern = pattern.is_absolute() ? pattern.string() : (scene_dir / pattern).lexically_normal().string();
   }
+  if (scene.source == FluidSourceKind::Solver) {
+    scene.solver = read_fluid_solver(fluid, scene.gravity);
+    scene.frames = std::make_pair(0, kDefaultSolverFrames);
+  }
   if (fluid.has("frames")) {
     const auto [a, b] = fluid.range("frames", {0, 1});
     if (a < 0 || a != std::floor(a) || b != std::floor(b))
@@ -53,7 +65,20 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
 
   scene.solids = read_solids(root, scene.gravity);
   scene.diffuse = read_diffuse_params(root.child("diffuse"), scene.fluid, scene.gravity);
-  scene.write_bgeo = root.child("output").boolean("bgeo", false);
+  const ParamReader output = root.child("output");
+  scene.write_bgeo = output.boolean("bgeo", false);
+  scene.write_fluid_bgeo = output.boolean("fluid_bgeo", false);
+  if (scene.write_fluid_bgeo && scene.source != FluidSourceKind::Solver)
+    output.fail_at("fluid_bgeo", "only scenes with fluid.source \"solver\" write fluid frames");
+
+  Json fluid_keys = root.raw("fluid");
+  if (fluid_keys.is_object()) fluid_keys.erase("frames");
+  Json keys = {{"gravity", root.raw("gravity")}, {"fluid", fluid_keys}, {"solids", root.raw("solids")}};
+  scene.fluid_fingerprint = fingerprint(keys);
+  keys["diffuse"] = root.raw("diffuse");
+  keys["domain"] = root.raw("domain");
+  keys["output"] = root.raw("output");
+  scene.diffuse_fingerprint = fingerprint(keys);
   return scene;
 }
 

@@ -9,6 +9,7 @@
 #include "core/frames.h"
 #include "core/params.h"
 #include "diffuse/params.h"
+#include "scene/fluid_scene_reader.h"
 #include "scene/solids.h"
 
 namespace spume {
@@ -26,7 +27,20 @@ struct SimScene {
   Aabb domain;                          // empty: derived from the tank or the first fluid frame
   DiffuseParams diffuse;
   bool write_bgeo = false;              // also write diffuse frames as BGEO for Houdini/Blender
+  bool write_fluid_bgeo = false;        // Solver: also write the fluid frames as BGEO
+
+  // Solver: the solver's settings and initial fluid. It simulates frames 0..frames->second (always
+  // set for solver scenes: fluid.frames, default [0, kDefaultSolverFrames]).
+  FluidSolverSetup solver;
+
+  // Canonical JSON of every key that shapes the fluid frames (gravity, fluid, solids; not the frame
+  // range) and, with the diffuse keys, domain and output added, the diffuse frames. A
+  // cache folder records the fingerprint it was made with; a different one means the cache is stale.
+  std::string fluid_fingerprint;
+  std::string diffuse_fingerprint;
 };
+
+constexpr int kDefaultSolverFrames = 100;
 
 // `scene_dir` resolves relative file paths; `default_name` is used when the scene has no "name".
 SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& scene_dir,

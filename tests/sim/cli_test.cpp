@@ -169,6 +169,95 @@ TEST_F(SpumeCommand, EmptyFrameIsRejectedNamingTheFile) {
   EXPECT_NE(r.output.find("p_2.ply: holds no fluid particles"), std::string::npos) << r.output;
 }
 
+// Width and height from a PNG's IHDR chunk (bytes 16-23, big-endian), read without libpng.
+std::pair<int, int> png_size(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char b[24] = {};
+  in.read(reinterpret_cast<char*>(b), 24);
+  if (!in || b[1] != 'P' || b[2] != 'N' || b[3] != 'G') return {0, 0};
+  auto be = [&](int o) { return (b[o] << 24) | (b[o + 1] << 16) | (b[o + 2] << 8) | b[o + 3]; };
+  return {be(16), be(20)};
+}
+
+// A tiny solver scene: 64 particles falling in a tank, 3 frames, 64 x 36 pixels.
+constexpr const char* kTinySolverScene = R"({
+  "name": "tiny",
+  "fluid": {"source": "solver", "radius": 0.025, "fps": 20, "frames": [0, 2],
+            "blocks": [{"min": [0.1, 0.1, 0.1], "max": [0.3, 0.3, 0.3]}]},
+  "solids": [{"type": "tank", "min": [0, 0, 0], "max": [0.4, 0.6, 0.4]}],
+  "render": {"resolution": [64, 36])";
+
+TEST_F(SpumeCommand, RunSimulatesRendersAndThenReusesEverything) {
+  write_scene(std::string(kTinySolverScene) + "}}");
+  Result r = run_spume("run " + scene() + " --out " + out());
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* name : {"0000.png", "0001.png", "0002.png"})
+    EXPECT_EQ(png_size(dir / "out/tiny/frames" / name), std::make_pair(64, 36)) << name;
+  EXPECT_NE(r.output.find("Saved: " + (dir / "out/tiny/frames/0002.png").string()), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("fluid solver           ran"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("ran: surface reconstruction"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("ran: OSMesa surface pass"), std::string::npos) << r.output;
+
+  // Again: nothing is simulated or rendered.
+  r = run_spume("run " + scene() + " --out " + out());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("fluid solver           skipped"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("diffuse simulation     skipped"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("0 frames written, 3 already on disk"), std::string::npos) << r.output;
+
+  // A render key: frames are rendered again, the simulation is reused.
+  r = run_spume("run " + scene() + " --out " + out() + " --set render.foam.radius=0.02");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("diffuse simulation     skipped"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("3 frames written, 0 already on disk"), std::string::npos) << r.output;
+
+  // --overwrite renders the chosen frames even though they are current.
+  r = run_spume("render " + scene() + " --out " + out() + " --set render.foam.radius=0.02 --frames 1-1 --overwrite");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("1 frames written, 0 already on disk"), std::string::npos) << r.output;
+}
+
+TEST_F(SpumeCommand, RunLeavesOutWhatTheSceneDoesNotShow) {
+  // No surface, no solids drawn, no diffuse type drawn: no reconstruction, no GL, no diffuse stage.
+  write_scene(std::string(kTinySolverScene) +
+              R"(, "surface": false, "solids": false, "spray": {"radius": 0}, "foam": {"radius": 0},
+                 "bubble": {"radius": 0}}})");
+  const Result r = run_spume("run " + scene() + " --out " + out());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("diffuse simulation     skipped"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("surface reconstruction"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("OSMesa"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("volume pass"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("CPU sky and ground"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "out/tiny/diffuse"));
+  EXPECT_EQ(png_size(dir / "out/tiny/frames/0001.png"), std::make_pair(64, 36));
+}
+
+TEST_F(SpumeCommand, RenderNeedsTheCachesAndBadRenderKeysAreNamed) {
+  write_scene(std::string(kTinySolverScene) + "}}");
+  Result r = run_spume("render " + scene() + " --out " + out());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("out/tiny/fluid: no current fluid caches for this scene"), std::string::npos) << r.output;
+
+  const std::pair<const char*, const char*> cases[] = {
+      {R"("resolution": [64])", "/render/resolution: expected [width, height] in whole pixels"},
+      {R"("integrator": "rk4")", "\"rk4\" is not a choice; allowed: \"exact\", \"march\""},
+      {R"("foam": {"radius": -1})", "/render/foam/radius: value -1 is out of range"},
+      {R"("spray": {"color": [1, -1, 0]})", "/render/spray/color: expected linear RGB"},
+      {R"("camera": {"position": [1, 1, 1], "target": [1, 1, 1]})", "/render/camera/target: must differ"},
+      {R"("frames": "frames/a.png")", "/render/frames: \"frames/a.png\" needs one frame placeholder"},
+      {R"("spp": 0)", "/render/spp: value 0 is out of range"},
+  };
+  for (const auto& [keys, expected] : cases) {
+    write_scene(std::string(kTinySolverScene).replace(std::string(kTinySolverScene).find("\"resolution\""),
+                                                      std::string("\"resolution\": [64, 36]").size(), keys) +
+                "}}");
+    r = run_spume("run --quiet " + scene() + " --out " + out());
+    EXPECT_EQ(r.status, 1) << keys;
+    EXPECT_NE(r.output.find(expected), std::string::npos) << keys << "\n" << r.output;
+  }
+}
+
 TEST_F(SpumeCommand, UsageErrorsExitNonZeroWithHelp) {
   EXPECT_EQ(run_spume("").status, 2);
   EXPECT_EQ(run_spume("frobnicate").status, 2);

@@ -1,0 +1,106 @@
+// spume lookdev: one frame from the caches, rendered for every combination of some render keys, as a
+// labelled contact sheet -- look-dev of spray vs foam radii without re-simulating.
+#include <cstdio>
+
+#include "cli_args.h"
+#include "commands.h"
+#include "core/error.h"
+#include "core/progress.h"
+#include "image/contact_sheet.h"
+#include "image/png_io.h"
+#include "render_stage.h"
+#include "scene_args.h"
+
+namespace spume {
+namespace {
+
+struct Variation {
+  std::string key;                  // e.g. render.spray.radius
+  std::vector<std::string> values;  // as typed (JSON values)
+};
+
+Variation parse_variation(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
+    fail("--vary \"", text, "\": expected KEY=V1,V2,... such as render.spray.radius=0.002,0.004");
+  Variation v{text.substr(0, eq), {}};
+  if (v.key.rfind("render.", 0) != 0)
+    fail("--vary \"", text, "\": look-dev varies render.* keys only (the caches fix everything simulated); "
+         "use --set and `spume run` for ", v.key);
+  size_t start = eq + 1;
+  while (start <= text.size()) {
+    const auto comma = text.find(',', start);
+    const std::string value = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    if (value.empty()) fail("--vary \"", text, "\": empty value in the list");
+    v.values.push_back(value);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return v;
+}
+
+// Every combination, the first variation changing slowest; each is a list of "key=value" overrides.
+std::vector<std::vector<std::string>> combinations(const std::vector<Variation>& vary) {
+  std::vector<std::vector<std::string>> out = {{}};
+  for (const Variation& v : vary) {
+    std::vector<std::vector<std::string>> next;
+    for (const auto& partial : out)
+      for (const auto& value : v.values) {
+        next.push_back(partial);
+        next.back().push_back(v.key + "=" + value);
+      }
+    out = std::move(next);
+  }
+  return out;
+}
+
+}  // namespace
+
+int command_lookdev(const std::vector<std::string>& raw) {
+  std::vector<cli::OptionSpec> options = scene_command_options();
+  options.push_back({"frame", true, false, "N         the frame to render (default: the scene's first)"});
+  options.push_back({"vary", true, true, "KEY=A,B,.. render key and its values, e.g. render.foam.radius=0.004,0.008"});
+  options.push_back({"columns", true, false, "N         tiles per row (default: the last --vary's count)"});
+  options.push_back({"tile-width", true, false, "W         tile width in pixels (default: the scene's, at most 480)"});
+  options.push_back({"output", true, false, "FILE      the sheet (default OUT/<scene>/lookdev/lookdev_<frame>.png)"});
+  const cli::ParsedArgs args = cli::parse(raw, options, "lookdev");
+  std::vector<Variation> vary;
+  for (const auto& v : args.all("vary")) vary.push_back(parse_variation(v));
+  const auto combos = combinations(vary);
+  if (combos.size() > 256) fail("--vary: ", combos.size(), " combinations; at most 256 fit a contact sheet");
+
+  std::vector<ContactTile> tiles;
+  std::filesystem::path output;
+  int frame = -1;
+  Progress progress("lookdev", combos.size(), args.has("quiet"));
+  for (size_t c = 0; c < combos.size(); ++c) {
+    SceneSetup setup = load_scene_setup(args, options, "lookdev", combos[c]);
+    const int full_width = setup.render.width;
+    const int tile_width = args.has("tile-width") ? cli::parse_int(*args.value("tile-width"), "--tile-width", 16, 4096)
+                                                  : std::min(full_width, 480);
+    setup.render.height = std::max(1, int(std::lround(double(setup.render.height) * tile_width / full_width)));
+    setup.render.width = tile_width;
+    PreparedRender prepared = prepare_render(setup.sim, setup.render, setup.out_root);
+    if (frame < 0) {
+      frame = args.has("frame") ? cli::parse_int(*args.value("frame"), "--frame", 0, 1 << 30) : prepared.frames.front();
+      if (!std::binary_search(prepared.frames.begin(), prepared.frames.end(), frame))
+        fail("--frame ", frame, ": not a frame of ", setup.sim.name, " (", prepared.frames.front(), "-",
+             prepared.frames.back(), ")");
+      output = args.has("output") ? std::filesystem::path(*args.value("output"))
+                                  : prepared.scene_out / "lookdev" / str("lookdev_", frame, ".png");
+    }
+    const LoadedFrame loaded = load_frame(prepared, frame);
+    FrameRenderer renderer(prepared.settings);
+    tiles.push_back({renderer.render(loaded.inputs()), combos[c]});
+    if (tiles.back().labels.empty()) tiles.back().labels.push_back(str(setup.sim.name, " frame ", frame));
+    progress.update(c + 1);
+  }
+  const int columns = args.has("columns") ? cli::parse_int(*args.value("columns"), "--columns", 1, 256)
+                                          : (vary.empty() ? 1 : int(vary.back().values.size()));
+  write_png(output, make_contact_sheet(tiles, columns));
+  progress.finish();
+  if (!args.has("quiet")) std::printf("Saved: %s\n", output.string().c_str());
+  return 0;
+}
+
+}  // namespace spume

@@ -1,0 +1,77 @@
+// spume render: the simulation caches -> PNG frames (never simulates), and spume run: simulate what is
+// missing, then render.
+#include <cstdio>
+
+#include "cli_args.h"
+#include "commands.h"
+#include "core/error.h"
+#include "pipeline/simulate_scene.h"
+#include "render_stage.h"
+#include "scene_args.h"
+
+namespace spume {
+namespace {
+
+std::vector<cli::OptionSpec> render_options() {
+  std::vector<cli::OptionSpec> options = scene_command_options();
+  options.push_back({"frames", true, false, "SPEC      render only these frames: 7, 0-99, 0-99:2, 1-3,5,10-20"});
+  options.push_back({"overwrite", false, false, "          render frames that already exist on disk"});
+  return options;
+}
+
+RenderStageOptions stage_options(const cli::ParsedArgs& args, const SceneSetup& setup) {
+  RenderStageOptions o;
+  o.out_root = setup.out_root;
+  o.quiet = setup.quiet;
+  o.overwrite = args.has("overwrite");
+  o.frame_spec = args.value("frames");
+  return o;
+}
+
+void report(const char* what, bool ran, bool quiet) {
+  if (!quiet) std::fprintf(stderr, "  %-22s %s\n", what, ran ? "ran" : "skipped");
+}
+
+void print_render_summary(const RenderStageSummary& s, bool quiet) {
+  if (quiet) return;
+  std::fprintf(stderr, "render: %d frames written, %d already on disk, %.1f s\n", s.written, s.skipped, s.seconds);
+  for (const auto& stage : s.stages) std::fprintf(stderr, "  ran: %s\n", stage.c_str());
+}
+
+}  // namespace
+
+int command_render(const std::vector<std::string>& raw) {
+  const auto options = render_options();
+  const cli::ParsedArgs args = cli::parse(raw, options, "render");
+  const SceneSetup setup = load_scene_setup(args, options, "render");
+  print_render_summary(run_render_stage(setup.sim, setup.render, setup.render_fingerprint, stage_options(args, setup)),
+                       setup.quiet);
+  return 0;
+}
+
+int command_run(const std::vector<std::string>& raw) {
+  auto options = render_options();
+  options.push_back({"force", false, false, "          simulate even when the caches are current"});
+  const cli::ParsedArgs args = cli::parse(raw, options, "run");
+  const SceneSetup setup = load_scene_setup(args, options, "run");
+  SimulateOptions sim;
+  sim.out_root = setup.out_root;
+  sim.quiet = setup.quiet;
+  sim.force = args.has("force");
+  // The diffuse simulation starts at the scene's first frame whatever is rendered, so --frames only
+  // limits rendering.
+  const bool diffuse = setup.render.draws_diffuse();
+  const SceneSimulation simulated = simulate_scene(setup.sim, sim, diffuse);
+  if (!setup.quiet) {
+    std::fprintf(stderr, "stages of %s:\n", setup.sim.name.c_str());
+    if (setup.sim.source == FluidSourceKind::Solver)
+      report("fluid solver", !simulated.fluid.reused, false);
+    report("diffuse simulation", diffuse && !simulated.diffuse.reused, false);
+  }
+  const RenderStageSummary rendered =
+      run_render_stage(setup.sim, setup.render, setup.render_fingerprint, stage_options(args, setup));
+  print_render_summary(rendered, setup.quiet);
+  return 0;
+}
+
+}  // namespace spume

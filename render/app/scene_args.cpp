@@ -1,0 +1,68 @@
+#include "scene_args.h"
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "scene_file.h"
+
+namespace spume {
+namespace {
+
+// The scene name for a bare file pattern: its file name without the frame placeholder.
+std::string name_from_pattern(const std::string& pattern) {
+  std::string stem = std::filesystem::path(pattern).filename().string();
+  stem = stem.substr(0, stem.find_first_of("%#."));
+  while (!stem.empty() && (stem.back() == '_' || stem.back() == '-')) stem.pop_back();
+  return stem.empty() ? "fluid" : stem;
+}
+
+}  // namespace
+
+std::vector<cli::OptionSpec> scene_command_options() {
+  return {
+      {"out", true, false, "DIR       output root (default out/); results go to DIR/<scene name>/"},
+      {"threads", true, false, "N         worker threads (default: one per core); results do not depend on it"},
+      {"set", true, true, "KEY=VALUE override a scene key by its path, e.g. --set diffuse.k_ta=2000"},
+      {"quiet", false, false, "          no progress on stderr"},
+      {"fluid", true, false,
+       "PATTERN   fluid files with every default, no scene file (e.g. 'cache/ParticleData_Fluid_%d.bgeo')"},
+      {"radius", true, false, "R         with --fluid: the fluid particle radius in m"},
+      {"fps", true, false, "F         with --fluid: frames per second of the fluid files (default 50)"},
+  };
+}
+
+SceneSetup load_scene_setup(const cli::ParsedArgs& args, const std::vector<cli::OptionSpec>& specs,
+                            const std::string& command, const std::vector<std::string>& extra_overrides) {
+  if (args.has("threads")) set_thread_count(cli::parse_int(*args.value("threads"), "--threads", 1, 1024));
+  std::vector<std::string> overrides = args.all("set");
+  overrides.insert(overrides.end(), extra_overrides.begin(), extra_overrides.end());
+  LoadedScene loaded = [&] {
+    if (args.has("fluid")) {
+      if (!args.positional.empty()) fail("spume ", command, ": give either a SCENE file or --fluid, not both");
+      if (!args.has("radius"))
+        fail("spume ", command, " --fluid: --radius R (the fluid particle radius in m) is required");
+      Json scene = {{"name", name_from_pattern(*args.value("fluid"))},
+                    {"fluid",
+                     {{"source", "files"},
+                      {"files", *args.value("fluid")},
+                      {"radius", cli::parse_double(*args.value("radius"), "--radius")},
+                      {"fps", args.has("fps") ? cli::parse_double(*args.value("fps"), "--fps") : 50.0}}}};
+      return scene_from_json(std::move(scene), "--fluid", ".", "fluid", overrides);
+    }
+    if (args.has("radius") || args.has("fps")) fail("spume ", command, ": --radius and --fps go with --fluid");
+    if (args.positional.size() != 1)
+      fail("usage: spume ", command, " SCENE.json [options]  |  spume ", command,
+           " --fluid PATTERN --radius R [options]\n", cli::usage_lines(specs));
+    return load_scene_file(args.positional[0], overrides);
+  }();
+
+  SceneSetup setup;
+  setup.sim = read_sim_scene(loaded.root, loaded.dir, loaded.default_name);
+  setup.render = read_render_settings(loaded.root.child("render"), setup.sim.fluid.particle_radius);
+  loaded.root.reject_unknown_keys();
+  setup.render_fingerprint = setup.sim.diffuse_fingerprint + "\nrender " + loaded.root.raw("render").dump();
+  if (auto out = args.value("out")) setup.out_root = *out;
+  setup.quiet = args.has("quiet");
+  return setup;
+}
+
+}  // namespace spume

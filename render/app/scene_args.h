@@ -1,0 +1,30 @@
+#pragma once
+// What simulate, render and run share on the command line: the scene (a file, or --fluid PATTERN
+// --radius R with every default), --set overrides, the output root, threads and quiet, read into the
+// sim and render halves of the scene. Unknown scene keys are rejected after both halves are read.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cli_args.h"
+#include "pipeline/render_settings.h"
+#include "scene/sim_scene.h"
+
+namespace spume {
+
+// The options every scene command takes; commands append their own.
+std::vector<cli::OptionSpec> scene_command_options();
+
+struct SceneSetup {
+  SimScene sim;
+  RenderSettings render;
+  std::string render_fingerprint;  // diffuse fingerprint + every render key
+  std::filesystem::path out_root = "out";
+  bool quiet = false;
+};
+
+// Applies --threads, loads the scene with --set (and `extra_overrides`), reads both halves.
+SceneSetup load_scene_setup(const cli::ParsedArgs& args, const std::vector<cli::OptionSpec>& specs,
+                            const std::string& command, const std::vector<std::string>& extra_overrides = {});
+
+}  // namespace spume

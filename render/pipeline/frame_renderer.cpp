@@ -1,0 +1,82 @@
+#include "frame_renderer.h"
+
+#include <chrono>
+
+#include "core/error.h"
+#include "surface/reconstruct.h"
+#include "volume/composite.h"
+#include "volume/volume_pass.h"
+
+namespace spume {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+SurfacePassOptions pass_options(const RenderSettings& s) {
+  SurfacePassOptions o;
+  o.supersample = s.supersample;
+  return o;
+}
+
+}  // namespace
+
+FrameRenderer::FrameRenderer(RenderSettings settings)
+    : settings_(std::move(settings)), surface_pass_(pass_options(settings_)) {
+  if (settings_.camera.empty()) fail("render: no camera (the caller frames the scene when the scene has none)");
+}
+
+Camera FrameRenderer::camera_at_time(double time) const {
+  Camera camera = camera_at(settings_.camera, time, settings_.width, settings_.height);
+  camera.up = settings_.camera_up;
+  return camera;
+}
+
+ImageRGB8 FrameRenderer::render(const FrameInputs& in, FrameReport* report) {
+  FrameReport r;
+  const Camera camera = camera_at_time(in.time);
+
+  TriangleMesh water;
+  if (settings_.draw_surface && !in.fluid.empty()) {
+    const auto t0 = Clock::now();
+    water = reconstruct_surface(in.fluid, settings_.surface);
+    r.reconstructed = true;
+    r.triangles = water.triangle_count();
+    r.reconstruct_seconds = seconds_since(t0);
+  }
+
+  SurfaceScene scene;
+  scene.fluid = water.empty() ? nullptr : &water;
+  scene.environment = settings_.environment;
+  scene.water = settings_.water;
+  TriangleMesh opaque;
+  for (const SolidMesh& s : in.solids) {
+    scene.solids.push_back(SceneSolid{&s.mesh, s.albedo, Vec3f::Zero()});
+    opaque.append(s.mesh);
+  }
+  auto t0 = Clock::now();
+  SurfacePassStats surface_stats;
+  const SurfaceImage background = surface_pass_.render(scene, camera, &surface_stats);
+  r.used_gl = surface_stats.used_gl;
+  r.surface_seconds = seconds_since(t0);
+
+  ImageRGBf colour = background.colour;
+  if (in.diffuse && volume_pass_needed(*in.diffuse, settings_.volume)) {
+    t0 = Clock::now();
+    VolumeSurfaces surfaces;
+    surfaces.water = water.empty() ? nullptr : &water;
+    surfaces.solids = opaque.empty() ? nullptr : &opaque;
+    VolumeStats volume_stats;
+    const VolumeImage volume = render_volume(*in.diffuse, camera, settings_.volume, surfaces, &volume_stats);
+    r.volume = true;
+    r.spheres = volume_stats.spheres;
+    r.volume_seconds = seconds_since(t0);
+    t0 = Clock::now();
+    colour = composite(volume, background.colour);
+    r.composite_seconds = seconds_since(t0);
+  }
+  if (report) *report = r;
+  return to_srgb8(colour);
+}
+
+}  // namespace spume

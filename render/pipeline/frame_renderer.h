@@ -1,0 +1,51 @@
+#pragma once
+// One frame, from plain inputs to an 8-bit sRGB image: surface reconstruction of the fluid, the OSMesa
+// pass (C_b), the Eq. 9 volume pass over the diffuse particles (L, C_d) and the composite
+// C_p = (1 - L) C_d + L C_b. Only what the frame needs runs: no reconstruction when the surface is
+// not drawn or there is no fluid, no GL context when nothing shows geometry, no volume pass when no
+// drawn diffuse particle exists.
+#include <span>
+#include <vector>
+
+#include "camera/camera.h"
+#include "gl/surface_pass.h"
+#include "image/image.h"
+#include "render_settings.h"
+#include "surface/triangle_mesh.h"
+
+namespace spume {
+
+struct SolidMesh {
+  TriangleMesh mesh;  // world space at this frame, m
+  Vec3f albedo = Vec3f(0.55f, 0.55f, 0.55f);
+};
+
+struct FrameInputs {
+  int index = 0;
+  double time = 0.0;                  // s: picks the camera key
+  std::span<const Vec3f> fluid;       // fluid particle positions; empty: no surface
+  const DiffuseFrame* diffuse = nullptr;
+  std::vector<SolidMesh> solids;
+};
+
+// What ran for a frame, and how long it took (wall clock, s).
+struct FrameReport {
+  bool reconstructed = false, used_gl = false, volume = false;
+  size_t triangles = 0, spheres = 0;
+  double reconstruct_seconds = 0, surface_seconds = 0, volume_seconds = 0, composite_seconds = 0;
+};
+
+class FrameRenderer {
+ public:
+  explicit FrameRenderer(RenderSettings settings);
+  // Call from one thread (the OSMesa context is the calling thread's); each stage is parallel inside.
+  ImageRGB8 render(const FrameInputs& inputs, FrameReport* report = nullptr);
+  const RenderSettings& settings() const { return settings_; }
+  Camera camera_at_time(double time) const;
+
+ private:
+  RenderSettings settings_;
+  SurfacePass surface_pass_;
+};
+
+}  // namespace spume

@@ -1,0 +1,37 @@
+#pragma once
+// The fluid stage of a solver scene: spume's DFSPH solver from t = 0 to the scene's last frame,
+// one cache per frame at the scene's frame rate.
+//   OUT/<scene>/fluid/fluid_0000.spf       positions, velocities, ids (io/spume_cache.h)
+//   OUT/<scene>/fluid/solver_stats.csv     steps, time step, density error, iterations per frame
+//   OUT/<scene>/fluid_bgeo/fluid_0000.bgeo the same as BGEO, when output.fluid_bgeo is set
+// Current caches (cache_state.h) are reused and the solver does not run. The solver cannot resume
+// mid-sequence (its state between frames is not only the particles), so a stale or incomplete
+// folder is simulated again from t = 0.
+#include <filesystem>
+#include <string>
+
+#include "scene/sim_scene.h"
+
+namespace spume {
+
+struct FluidStageOptions {
+  std::filesystem::path out_root = "out";
+  bool quiet = false;
+  bool force = false;  // simulate even when the caches are current
+};
+
+struct FluidStageSummary {
+  bool reused = false;  // the caches were current; the solver did not run
+  int frames = 0;
+  size_t particles = 0;
+  double seconds = 0.0;
+};
+
+std::filesystem::path fluid_cache_path(const std::filesystem::path& scene_out, int frame);
+// The pattern the diffuse stage and the renderer read the solver's frames with.
+std::string fluid_cache_pattern(const std::filesystem::path& scene_out);
+
+// Requires scene.source == Solver.
+FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions& options);
+
+}  // namespace spume

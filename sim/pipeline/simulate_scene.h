@@ -1,0 +1,23 @@
+#pragma once
+// Both simulation stages of a scene, each skipped when its caches are current:
+//   fluid   (solver scenes only) -> OUT/<scene>/fluid/      fluid_stage.h
+//   diffuse                      -> OUT/<scene>/diffuse/    simulate_run.h
+#include <memory>
+
+#include "pipeline/fluid_stage.h"
+#include "pipeline/simulate_run.h"
+
+namespace spume {
+
+struct SceneSimulation {
+  FluidStageSummary fluid;     // frames == 0 when the fluid comes from files
+  SimulateSummary diffuse;     // frames == 0 when the diffuse stage was not asked for
+};
+
+// Where the scene's fluid frames are read from: its files, or the solver's caches under out_root.
+std::unique_ptr<FluidSource> scene_fluid_source(const SimScene& scene, const std::filesystem::path& out_root);
+
+// `diffuse`: false leaves the diffuse stage out (a scene that draws no diffuse material).
+SceneSimulation simulate_scene(const SimScene& scene, const SimulateOptions& options, bool diffuse = true);
+
+}  // namespace spume

@@ -1,0 +1,149 @@
+// The simulation stages on disk: the solver scene's fluid caches sample the solver at frame times,
+// current caches are reused without running anything, and a changed key or a missing frame makes a
+// stage run again.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "fluid/solver.h"
+#include "io/spume_cache.h"
+#include "pipeline/cache_state.h"
+#include "pipeline/simulate_scene.h"
+
+namespace spume {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A 0.2 m cube of water (r = 0.025: 64 particles) falling in a tank, 4 frames at 20 fps.
+Json tiny_solver_scene() {
+  return Json::parse(R"({
+    "name": "tiny",
+    "fluid": {"source": "solver", "radius": 0.025, "fps": 20, "frames": [0, 3],
+              "blocks": [{"min": [0.1, 0.1, 0.1], "max": [0.3, 0.3, 0.3]}]},
+    "solids": [{"type": "tank", "min": [0, 0, 0], "max": [0.4, 0.6, 0.4]}]
+  })");
+}
+
+SimScene scene_of(const Json& json) {
+  const ParamReader root = ParamReader::from_json(json, "tiny.json");
+  SimScene scene = read_sim_scene(root, ".", "tiny");
+  root.reject_unknown_keys();
+  return scene;
+}
+
+class PipelineStages : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    out = fs::temp_directory_path() / ("spume_stages_" + std::to_string(::getpid()) + "_" +
+                                       ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(out);
+    options.out_root = out;
+    options.quiet = true;
+  }
+  void TearDown() override { fs::remove_all(out); }
+  fs::file_time_type mtime(const std::string& relative) const { return fs::last_write_time(out / "tiny" / relative); }
+  fs::path out;
+  SimulateOptions options;
+};
+
+TEST_F(PipelineStages, FluidCachesHoldTheSolverStateAtEachFrameTime) {
+  const SimScene scene = scene_of(tiny_solver_scene());
+  const SceneSimulation result = simulate_scene(scene, options);
+  EXPECT_FALSE(result.fluid.reused);
+  EXPECT_EQ(result.fluid.frames, 4);
+  EXPECT_EQ(result.diffuse.frames, 4);
+
+  // The same solver stepped by hand to t = k / 20 s gives the same bytes.
+  FluidSolver reference(scene.solver.params, scene.solver.blocks, scene.solids);
+  ASSERT_EQ(reference.size(), 64u);
+  for (int k = 0; k <= 3; ++k) {
+    reference.advance_to(k / 20.0);
+    const FluidFrame expected = reference.frame(k);
+    FluidCacheHeader header;
+    const FluidFrame cached = read_fluid_cache(fluid_cache_path(out / "tiny", k), &header);
+    EXPECT_EQ(cached.index, k);
+    EXPECT_DOUBLE_EQ(cached.time, k / 20.0);
+    EXPECT_FLOAT_EQ(header.particle_radius, 0.025f);
+    ASSERT_EQ(cached.size(), 64u);
+    EXPECT_EQ(cached.positions, expected.positions) << "frame " << k;
+    EXPECT_EQ(cached.velocities, expected.velocities) << "frame " << k;
+    EXPECT_EQ(cached.ids, expected.ids);
+    EXPECT_TRUE(fs::is_regular_file(diffuse_cache_path(out / "tiny", k)));
+  }
+  EXPECT_TRUE(fs::is_regular_file(out / "tiny/fluid/solver_stats.csv"));
+}
+
+TEST_F(PipelineStages, CurrentCachesAreReusedAndChangesRunTheStagesAgain) {
+  Json json = tiny_solver_scene();
+  simulate_scene(scene_of(json), options);
+  const auto fluid_time = mtime("fluid/fluid_0003.spf");
+  const auto diffuse_time = mtime("diffuse/diffuse_0003.spd");
+
+  // Nothing changed: neither stage runs, no file is touched.
+  SceneSimulation again = simulate_scene(scene_of(json), options);
+  EXPECT_TRUE(again.fluid.reused);
+  EXPECT_TRUE(again.diffuse.reused);
+  EXPECT_EQ(mtime("fluid/fluid_0003.spf"), fluid_time);
+  EXPECT_EQ(mtime("diffuse/diffuse_0003.spd"), diffuse_time);
+
+  // A diffuse key: the fluid is reused, the diffuse stage runs.
+  json["diffuse"] = {{"k_ta", 50}};
+  again = simulate_scene(scene_of(json), options);
+  EXPECT_TRUE(again.fluid.reused);
+  EXPECT_FALSE(again.diffuse.reused);
+
+  // A fluid key: both run (new fluid frames make the diffuse caches stale).
+  json["fluid"]["solver"] = {{"viscosity", 0.002}};
+  again = simulate_scene(scene_of(json), options);
+  EXPECT_FALSE(again.fluid.reused);
+  EXPECT_FALSE(again.diffuse.reused);
+
+  // A missing frame file: the stage runs again.
+  fs::remove(out / "tiny/fluid/fluid_0002.spf");
+  again = simulate_scene(scene_of(json), options);
+  EXPECT_FALSE(again.fluid.reused);
+  EXPECT_TRUE(fs::is_regular_file(out / "tiny/fluid/fluid_0002.spf"));
+
+  // More frames than cached: the fluid stage runs again to the new last frame.
+  json["fluid"]["frames"] = {0, 4};
+  again = simulate_scene(scene_of(json), options);
+  EXPECT_FALSE(again.fluid.reused);
+  EXPECT_EQ(again.diffuse.frames, 5);
+}
+
+TEST(CacheState, FingerprintMustMatchAndEveryFrameExist) {
+  const fs::path dir = fs::temp_directory_path() / ("spume_cache_state_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path frame = dir / "f_0000.bin";
+  std::ofstream(frame) << "x";
+  EXPECT_FALSE(cache_is_current(dir, "{\"a\":1}", {frame}));  // never completed
+  mark_cache_complete(dir, "{\"a\":1}");
+  EXPECT_TRUE(cache_is_current(dir, "{\"a\":1}", {frame}));
+  EXPECT_FALSE(cache_is_current(dir, "{\"a\":2}", {frame}));
+  EXPECT_FALSE(cache_is_current(dir, "{\"a\":1}", {frame, dir / "f_0001.bin"}));
+  mark_cache_started(dir);  // a run in progress is not complete
+  EXPECT_FALSE(cache_is_current(dir, "{\"a\":1}", {frame}));
+  fs::remove_all(dir);
+}
+
+TEST(SceneFingerprint, SameSettingsInAnyKeyOrderAgreeAndFrameRangeIsLeftOut) {
+  Json a = tiny_solver_scene();
+  Json b = Json::parse(R"({
+    "solids": [{"max": [0.4, 0.6, 0.4], "min": [0, 0, 0], "type": "tank"}],
+    "fluid": {"blocks": [{"max": [0.3, 0.3, 0.3], "min": [0.1, 0.1, 0.1]}], "frames": [0, 9],
+              "fps": 20, "radius": 0.025, "source": "solver"},
+    "name": "tiny"
+  })");
+  EXPECT_EQ(scene_of(a).fluid_fingerprint, scene_of(b).fluid_fingerprint);
+  a["diffuse"] = {{"k_wc", 10}};
+  EXPECT_EQ(scene_of(a).fluid_fingerprint, scene_of(b).fluid_fingerprint);
+  EXPECT_NE(scene_of(a).diffuse_fingerprint, scene_of(b).diffuse_fingerprint);
+  a["gravity"] = {0, -9.0, 0};
+  EXPECT_NE(scene_of(a).fluid_fingerprint, scene_of(b).fluid_fingerprint);
+}
+
+}  // namespace
+}  // namespace spume
