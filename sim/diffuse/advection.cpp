@@ -35,26 +35,40 @@ void advance_foam(Vec3f& x, Vec3f& v, const Vec3f& u, float dt, FoamVelocity mod
   if (mode == FoamVelocity::Fluid) v = u;
 }
 
+BubbleStep bubble_step(const DiffuseParams& p, float dt) {
+  BubbleStep s;
+  s.mode = p.bubble_drag, s.dt = dt, s.drag = p.drag;
+  s.lift = -p.buoyancy * p.gravity;  // acceleration opposite gravity
+  if (p.bubble_drag == BubbleDrag::Exponential && p.drag > 0.0f) {
+    const double tau = double(p.drag_reference_step) / double(p.drag);
+    s.tau = float(tau);
+    s.decay = float(std::exp(-double(dt) / tau));
+    s.settle = float(-std::expm1(-double(dt) / tau) * tau);  // tau (1 - e^{-dt/tau}), exact for tiny tau
+  }
+  return s;
+}
+
 void advance_bubble(Vec3f& x, Vec3f& v, const Vec3f& u, const DiffuseParams& p, float dt) {
-  const Vec3f lift = -p.buoyancy * p.gravity;  // acceleration opposite gravity
-  if (p.bubble_drag == BubbleDrag::Paper) {
-    v += dt * lift + p.drag * (u - v);
+  advance_bubble(x, v, u, bubble_step(p, dt));
+}
+
+void advance_bubble(Vec3f& x, Vec3f& v, const Vec3f& u, const BubbleStep& s) {
+  const float dt = s.dt;
+  if (s.mode == BubbleDrag::Paper) {
+    v += dt * s.lift + s.drag * (u - v);
     x += dt * v;
     return;
   }
-  if (p.drag <= 0.0f) {  // no drag: free rise, exactly
-    x += dt * v + (0.5f * dt * dt) * lift;
-    v += dt * lift;
+  if (s.drag <= 0.0f) {  // no drag: free rise, exactly
+    x += dt * v + (0.5f * dt * dt) * s.lift;
+    v += dt * s.lift;
     return;
   }
   // v(t) = w + (v0 - w) e^{-t/tau} with terminal w = u + tau lift; x follows by integrating v.
-  const double tau = double(p.drag_reference_step) / double(p.drag);
-  const double decay = std::exp(-double(dt) / tau);
-  const double settle = -std::expm1(-double(dt) / tau) * tau;  // tau (1 - e^{-dt/tau}), exact for tiny tau
-  const Vec3f terminal = u + float(tau) * lift;
+  const Vec3f terminal = u + s.tau * s.lift;
   const Vec3f gap = v - terminal;
-  x += dt * terminal + float(settle) * gap;
-  v = terminal + float(decay) * gap;
+  x += dt * terminal + s.settle * gap;
+  v = terminal + s.decay * gap;
 }
 
 }  // namespace spume

@@ -21,4 +21,15 @@ void advance_foam(Vec3f& x, Vec3f& v, const Vec3f& fluid_velocity, float dt, Foa
 // exactly over dt (stable for any k_d; equals the paper's terminal speed at dt = reference_step).
 void advance_bubble(Vec3f& x, Vec3f& v, const Vec3f& fluid_velocity, const DiffuseParams& params, float dt);
 
+// The part of a bubble step that depends only on the parameters and dt (two exponentials), worked
+// out once per step instead of once per bubble; advance_bubble above is bubble_step + this overload.
+struct BubbleStep {
+  BubbleDrag mode = BubbleDrag::Exponential;
+  float dt = 0.0f, drag = 0.0f;
+  Vec3f lift = Vec3f::Zero();          // -k_b g
+  float tau = 0.0f, decay = 0.0f, settle = 0.0f;  // exponential mode with drag > 0
+};
+BubbleStep bubble_step(const DiffuseParams& params, float dt);
+void advance_bubble(Vec3f& x, Vec3f& v, const Vec3f& fluid_velocity, const BubbleStep& step);
+
 }  // namespace spume

@@ -43,8 +43,16 @@ void sample_cylinder(const Vec3f& x_f, const Vec3f& v_f, float dt, float radius,
 EmissionResult emit_diffuse(const FluidStepState& state, const FormationPotentials& potentials,
                             const DiffuseParams& params, uint32_t step, float dt, float particle_radius,
                             DiffuseFrame& out) {
+  EmissionBuffers buffers;
+  return emit_diffuse(state, potentials, params, step, dt, particle_radius, out, buffers);
+}
+
+EmissionResult emit_diffuse(const FluidStepState& state, const FormationPotentials& potentials,
+                            const DiffuseParams& params, uint32_t step, float dt, float particle_radius,
+                            DiffuseFrame& out, EmissionBuffers& buffers) {
   const size_t n = state.positions.size();
-  std::vector<uint32_t> counts(n);
+  std::vector<uint32_t>& counts = buffers.counts;
+  counts.resize(n);
   parallel_for(n, 4096, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
       const float expected =
@@ -52,7 +60,8 @@ EmissionResult emit_diffuse(const FluidStepState& state, const FormationPotentia
       counts[i] = round_emission(expected, {params.seed, RandomPurpose::EmissionRounding, step, state.ids[i], 0});
     }
   });
-  std::vector<uint64_t> offsets(n + 1);
+  std::vector<uint64_t>& offsets = buffers.offsets;
+  offsets.resize(n + 1);
   exclusive_scan(counts.data(), n, offsets.data());
   EmissionResult result;
   result.requested = offsets[n];

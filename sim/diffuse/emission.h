@@ -28,10 +28,19 @@ float emission_lifetime(const DiffuseParams& params, float i_ta, float i_wc, flo
 void sample_cylinder(const Vec3f& x_f, const Vec3f& v_f, float dt, float radius, const std::array<float, 4>& u,
                      Vec3f& x_d, Vec3f& v_d);
 
+// Per-fluid-particle counts and offsets, kept between steps by a caller that emits every step.
+struct EmissionBuffers {
+  std::vector<uint32_t> counts;
+  std::vector<uint64_t> offsets;
+};
+
 // Appends this step's new particles to `out` (ids, positions, velocities, lifetimes; types are set by
 // the next classification). `step` is the global diffuse step; the budget counts out.size() as alive.
 EmissionResult emit_diffuse(const FluidStepState& state, const FormationPotentials& potentials,
                             const DiffuseParams& params, uint32_t step, float dt, float particle_radius,
                             DiffuseFrame& out);
+EmissionResult emit_diffuse(const FluidStepState& state, const FormationPotentials& potentials,
+                            const DiffuseParams& params, uint32_t step, float dt, float particle_radius,
+                            DiffuseFrame& out, EmissionBuffers& buffers);
 
 }  // namespace spume

@@ -5,69 +5,106 @@
 
 #include "core/parallel.h"
 #include "grid/block_buffer.h"
-#include "grid/radix_sort.h"
 
 namespace spume {
+namespace {
+
+// Neighbour count and poly6-weighted velocity sums of the fluid in `block` around p. Built twice,
+// for AVX2 and for baseline x86-64, picked at load time: the lane loop is the same IEEE arithmetic
+// either way (no FMA: contraction is off), so the results are too.
+__attribute__((target_clones("avx2", "default"))) void sum_block(const BlockBuffer& block, const Vec3f& p,
+                                                                  float inv_h2, float& count_out, float& kernel_out,
+                                                                  Vec3f& velocity_out) {
+  const size_t m = block.size();
+  const float *bx = block.x(), *by = block.y(), *bz = block.z();
+  const float *bvx = block.attribute(0, 0), *bvy = block.attribute(0, 1), *bvz = block.attribute(0, 2);
+  const float px = p.x(), py = p.y(), pz = p.z();
+  float count[kLanes] = {}, wsum[kLanes] = {}, wx[kLanes] = {}, wy[kLanes] = {}, wz[kLanes] = {};
+  for (size_t j = 0; j < m; j += kLanes)
+    for (size_t l = 0; l < kLanes; ++l) {
+      const float dx = bx[j + l] - px, dy = by[j + l] - py, dz = bz[j + l] - pz;
+      const float q2 = std::min((dx * dx + dy * dy + dz * dz) * inv_h2, 4.0f);
+      const float t = std::max(1.0f - q2, 0.0f);
+      const float w = t * t * t;  // poly6 shape (1 - r^2/h^2)^3; its constant cancels in the ratio
+      count[l] += q2 <= 1.0f ? 1.0f : 0.0f;
+      wsum[l] += w;
+      wx[l] += w * bvx[j + l], wy[l] += w * bvy[j + l], wz[l] += w * bvz[j + l];
+    }
+  const float total = lane_sum(wsum);
+  count_out = lane_sum(count);
+  kernel_out = total;
+  velocity_out = total > 0.0f ? Vec3f(Vec3f(lane_sum(wx), lane_sum(wy), lane_sum(wz)) / total) : Vec3f::Zero();
+}
+
+// Smallest half-cell group for which the block is cut down to the group's reach first.
+constexpr uint32_t kFilterFrom = 6;
+
+}  // namespace
 
 void sample_fluid(const NeighbourGrid& grid, std::span<const Vec3f> sorted_motion, std::span<const Vec3f> positions,
                   FluidSamples& out) {
   const size_t n = positions.size();
-  out.neighbour_count.assign(n, 0.0f);
-  out.fluid_velocity.assign(n, Vec3f::Zero());
-  out.kernel_sum.assign(n, 0.0f);
+  out.neighbour_count.resize(n);
+  out.fluid_velocity.resize(n);
+  out.kernel_sum.resize(n);
 
-  // Sort by cell; particles away from all fluid share the key one past the last cell and sort last.
-  const uint32_t outside = grid.key_count();
-  std::vector<uint32_t> keys(n);
+  // Sort by half-cell (by cell on a grid too large for half-cell keys); particles away from all fluid
+  // share the key one past the last and sort last.
+  const bool halves = grid.key_count() <= NeighbourGrid::kMaxOctantKeys;
+  const uint32_t outside = halves ? grid.key_count() * 8 : grid.key_count();
+  out.keys.resize(n);
   parallel_for(n, 1 << 14, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
-      const uint32_t k = grid.key_of(positions[i]);
-      keys[i] = k == NeighbourGrid::kOutside ? outside : k;
+      const uint32_t k = halves ? grid.octant_key_of(positions[i]) : grid.key_of(positions[i]);
+      out.keys[i] = k == NeighbourGrid::kOutside ? outside : k;
     }
   });
-  out.cell_order = radix_sort_indices(keys, std::bit_width(outside));
+  out.sorter.sort(out.keys, std::bit_width(outside));
+  const std::vector<uint32_t>& order = out.sorter.order();
+  const std::vector<uint32_t>& sorted = out.sorter.sorted_keys();
 
-  // Group boundaries: runs of equal key in cell order, fluid-free particles excluded.
-  std::vector<uint32_t> group_start;
-  for (size_t s = 0; s < n; ++s) {
-    const uint32_t k = keys[out.cell_order[s]];
-    if (k == outside) break;
-    if (s == 0 || k != keys[out.cell_order[s - 1]]) group_start.push_back(uint32_t(s));
-  }
-  size_t inside_end = group_start.empty() ? 0 : group_start.back();
-  while (inside_end < n && keys[out.cell_order[inside_end]] != outside) ++inside_end;
-  group_start.push_back(uint32_t(inside_end));
+  // Groups: runs of equal key in sorted order, fluid-free particles excluded.
+  const size_t inside_end = size_t(std::lower_bound(sorted.begin(), sorted.end(), outside) - sorted.begin());
+  out.group_start.resize(inside_end + 1);
+  const size_t groups = parallel_select(
+      inside_end, [&](size_t s) { return s == 0 || sorted[s] != sorted[s - 1]; },
+      [&](size_t s, size_t k) { out.group_start[k] = uint32_t(s); });
+  out.group_start.resize(groups + 1);
+  out.group_start[groups] = uint32_t(inside_end);
+
+  parallel_for(n - inside_end, 1 << 14, [&](size_t b, size_t e) {
+    for (size_t s = inside_end + b; s < inside_end + e; ++s) {
+      const uint32_t i = order[s];
+      out.neighbour_count[i] = 0.0f, out.kernel_sum[i] = 0.0f, out.fluid_velocity[i] = Vec3f::Zero();
+    }
+  });
 
   const float h = grid.support_radius(), inv_h2 = 1.0f / (h * h);
-  parallel_for(group_start.size() - 1, 8, [&](size_t gb, size_t ge) {
-    BlockBuffer block;
+  // Slightly more than h, so that rounding cannot drop a point the kernel would count.
+  const Vec3f reach = Vec3f::Constant(1.001f * h);
+  parallel_for(groups, 16, [&](size_t gb, size_t ge) {
+    BlockBuffer block, near;
+    uint32_t block_cell = NeighbourGrid::kOutside;
     for (size_t g = gb; g < ge; ++g) {
-      const uint32_t first = group_start[g], last = group_start[g + 1];
-      block.gather(grid, keys[out.cell_order[first]], {sorted_motion});
-      const size_t m = block.size();
-      const float *bx = block.x(), *by = block.y(), *bz = block.z();
-      const float *bvx = block.attribute(0, 0), *bvy = block.attribute(0, 1), *bvz = block.attribute(0, 2);
+      const uint32_t first = out.group_start[g], last = out.group_start[g + 1];
+      const uint32_t cell = halves ? sorted[first] >> 3 : sorted[first];
+      if (cell != block_cell) block.gather(grid, cell, {sorted_motion}), block_cell = cell;
+      const BlockBuffer* scan = &block;
+      // Filtering costs about one block scan; it pays off for groups of several particles.
+      if (halves && last - first >= kFilterFrom) {
+        Aabb box;
+        for (uint32_t s = first; s < last; ++s) box.extend(positions[order[s]]);
+        box.min -= reach, box.max += reach;
+        near.gather_within(block, box);
+        scan = &near;
+      }
       for (uint32_t s = first; s < last; ++s) {
-        const uint32_t i = out.cell_order[s];
-        const float px = positions[i].x(), py = positions[i].y(), pz = positions[i].z();
-        float count[kLanes] = {}, wsum[kLanes] = {}, wx[kLanes] = {}, wy[kLanes] = {}, wz[kLanes] = {};
-        for (size_t j = 0; j < m; j += kLanes)
-          for (size_t l = 0; l < kLanes; ++l) {
-            const float dx = bx[j + l] - px, dy = by[j + l] - py, dz = bz[j + l] - pz;
-            const float q2 = std::min((dx * dx + dy * dy + dz * dz) * inv_h2, 4.0f);
-            const float t = std::max(1.0f - q2, 0.0f);
-            const float w = t * t * t;  // poly6 shape (1 - r^2/h^2)^3; its constant cancels in the ratio
-            count[l] += q2 <= 1.0f ? 1.0f : 0.0f;
-            wsum[l] += w;
-            wx[l] += w * bvx[j + l], wy[l] += w * bvy[j + l], wz[l] += w * bvz[j + l];
-          }
-        const float total = lane_sum(wsum);
-        out.neighbour_count[i] = lane_sum(count);
-        out.kernel_sum[i] = total;
-        if (total > 0.0f) out.fluid_velocity[i] = Vec3f(lane_sum(wx), lane_sum(wy), lane_sum(wz)) / total;
+        const uint32_t i = order[s];
+        sum_block(*scan, positions[i], inv_h2, out.neighbour_count[i], out.kernel_sum[i], out.fluid_velocity[i]);
       }
     }
   });
+  out.cell_order.swap(out.sorter.order());  // the sorter reuses the old buffer next time
 }
 
 }  // namespace spume

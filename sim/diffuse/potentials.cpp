@@ -88,7 +88,9 @@ void compute_potentials(const NeighbourGrid& grid, const FluidStepState& state, 
       out.kinetic[i] = clamp_and_scale(0.5f * state.masses[i] * speed2, params.kinetic.lo, params.kinetic.hi);
     }
   });
-  std::vector<Vec3f> sorted_velocity(n), sorted_normal(n);
+  std::vector<Vec3f>& sorted_velocity = out.sorted_velocity;
+  std::vector<Vec3f>& sorted_normal = out.sorted_normal;
+  sorted_velocity.resize(n), sorted_normal.resize(n);
   parallel_for(n, 4096, [&](size_t b, size_t e) {
     for (size_t j = b; j < e; ++j) sorted_velocity[j] = state.velocities[order[j]], sorted_normal[j] = out.normals[order[j]];
   });

@@ -15,6 +15,9 @@ struct FormationPotentials {
   std::vector<float> trapped_air;  // I_ta
   std::vector<float> wave_crest;   // I_wc
   std::vector<float> kinetic;      // I_k
+
+  // Working buffers kept between steps (in grid order), so that a step touches no fresh memory.
+  std::vector<Vec3f> sorted_velocity, sorted_normal;
 };
 
 // Surface normals from the colour-field gradient: grad c_i = sum_j V W'(r_ij) x_ij / r_ij with the

@@ -1,5 +1,6 @@
 #include "simulator.h"
 
+#include <atomic>
 #include <chrono>
 
 #include "core/error.h"
@@ -32,26 +33,32 @@ DiffuseSimulator::DiffuseSimulator(DiffuseSetup setup) : setup_(std::move(setup)
   rest_number_density_ = 1.0f / particle_volume_;
 }
 
-void DiffuseSimulator::classify(const FluidStepState& state, uint32_t step, bool sample_velocity) {
+const SolidSet& DiffuseSimulator::solids_at(double t, SolidSet& slot) const {
+  if (!setup_.solids.any_moving()) return setup_.solids;
+  slot = setup_.solids.at_time(t);
+  return slot;
+}
+
+void DiffuseSimulator::classify(const FluidStepState& state, uint32_t step, bool sample_velocity, double t) {
   {
-    StageTimer t(pending_, Stage::Grid);
+    StageTimer timer(pending_, Stage::Grid);
     grid_.build(state.positions, setup_.fluid.support_radius);
     const auto order = grid_.sorted_to_original();
-    sorted_motion_.assign(order.size(), Vec3f::Zero());
-    if (sample_velocity)
-      parallel_for(order.size(), 4096, [&](size_t b, size_t e) {
-        for (size_t j = b; j < e; ++j) sorted_motion_[j] = state.motion[order[j]];
-      });
+    sorted_motion_.resize(order.size());
+    parallel_for(order.size(), 4096, [&](size_t b, size_t e) {
+      for (size_t j = b; j < e; ++j) sorted_motion_[j] = sample_velocity ? state.motion[order[j]] : Vec3f::Zero();
+    });
   }
-  StageTimer t(pending_, Stage::Classify);
+  StageTimer timer(pending_, Stage::Classify);
   sample_fluid(grid_, sorted_motion_, particles_.positions, samples_);
   const DiffuseParams& p = setup_.params;
-  const bool solids = p.count_solids && !setup_.solids.empty();
+  const SolidSet& solids = solids_at(t, classify_solids_);
+  const bool count_solids = p.count_solids && !solids.empty();
   const float h = setup_.fluid.support_radius;
   parallel_for(particles_.size(), 4096, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
       float count = samples_.neighbour_count[i];
-      if (solids) count += rest_number_density_ * setup_.solids.solid_volume_within(particles_.positions[i], h);
+      if (count_solids) count += rest_number_density_ * solids.solid_volume_within(particles_.positions[i], h);
       samples_.neighbour_count[i] = count;
       // Particles born in the previous step have no type yet: no hysteresis for them.
       const bool newborn = diffuse_id_step(particles_.ids[i]) == ((step - 1) & kMaxBirthStep);
@@ -60,20 +67,27 @@ void DiffuseSimulator::classify(const FluidStepState& state, uint32_t step, bool
   });
 }
 
-void DiffuseSimulator::step(const FluidStepState& state, uint32_t step, float dt) {
+void DiffuseSimulator::step(const FluidStepState& state, uint32_t step, float dt, double t_end) {
   const DiffuseParams& p = setup_.params;
   const size_t old_count = particles_.size();
+  // Positions after the step belong to t_end: keep them out of the solids as they stand then,
+  // relative to each wall's velocity then.
+  const SolidSet& solids = solids_at(t_end, step_solids_);
+  const float skin = 1e-4f * setup_.fluid.particle_radius;
+  const bool limit = !setup_.domain.empty();
 
   // Advect the existing particles (MODEL.md §4), keep them out of solids, dissolve foam (§5).
-  std::vector<uint8_t> alive(old_count, 1);
+  alive_.resize(old_count);
+  std::atomic<uint64_t> dissolved{0}, removed{0};
   {
-    StageTimer t(pending_, Stage::Advect);
-    const float skin = 1e-4f * setup_.fluid.particle_radius;
-    const bool limit = !setup_.domain.empty();
+    StageTimer timer(pending_, Stage::Advect);
+    const BubbleStep bubble = bubble_step(p, dt);
     parallel_for(old_count, 4096, [&](size_t b, size_t e) {
+      uint64_t dissolved_here = 0, removed_here = 0;
       for (size_t i = b; i < e; ++i) {
         Vec3f& x = particles_.positions[i];
         Vec3f& v = particles_.velocities[i];
+        uint8_t alive = 1;
         // Where no fluid is within h there is no fluid velocity to follow: keep the particle's own.
         const Vec3f u = samples_.kernel_sum[i] > 0.0f ? samples_.fluid_velocity[i] : v;
         switch (particles_.types[i]) {
@@ -81,70 +95,74 @@ void DiffuseSimulator::step(const FluidStepState& state, uint32_t step, float dt
           case DiffuseType::Foam:
             advance_foam(x, v, u, dt, p.foam_velocity);
             particles_.lifetimes[i] -= dt;
-            if (particles_.lifetimes[i] <= 0.0f) alive[i] = 0;
+            if (particles_.lifetimes[i] <= 0.0f) alive = 0;
             break;
-          case DiffuseType::Bubble: advance_bubble(x, v, u, p, dt); break;
+          case DiffuseType::Bubble: advance_bubble(x, v, u, bubble); break;
         }
-        setup_.solids.push_out(x, v, skin);
-        if (alive[i] && limit && !setup_.domain.contains(x)) alive[i] = 2;
+        solids.push_out(x, v, skin);
+        if (alive && limit && !setup_.domain.contains(x)) alive = 2;
+        alive_[i] = alive;
+        dissolved_here += alive == 0, removed_here += alive == 2;
       }
+      dissolved += dissolved_here, removed += removed_here;
     });
   }
+  pending_.dissolved += dissolved;
+  pending_.removed += removed;
 
   // Emit from the fluid at t (MODEL.md §1-2); newborns are appended after the existing particles.
   EmissionResult emitted;
   if (p.k_ta > 0.0f || p.k_wc > 0.0f) {
     {
-      StageTimer t(pending_, Stage::Potentials);
+      StageTimer timer(pending_, Stage::Potentials);
       compute_potentials(grid_, state, p, particle_volume_, potentials_);
     }
-    StageTimer t(pending_, Stage::Emit);
+    StageTimer timer(pending_, Stage::Emit);
     // The budget counts the particles that survive this step.
-    size_t survivors = 0;
-    for (uint8_t a : alive) survivors += a == 1;
+    const size_t survivors = old_count - size_t(dissolved + removed);
     DiffuseParams budget = p;
     if (p.max_particles) budget.max_particles = *p.max_particles + (old_count - survivors);
-    emitted = emit_diffuse(state, potentials_, budget, step, dt, setup_.fluid.particle_radius, particles_);
-  }
-  // A newborn sampled around a fluid particle that hugs a wall may start inside it.
-  if (!setup_.solids.empty()) {
-    const float skin = 1e-4f * setup_.fluid.particle_radius;
-    parallel_for(particles_.size() - old_count, 4096, [&](size_t b, size_t e) {
-      for (size_t k = old_count + b; k < old_count + e; ++k)
-        setup_.solids.push_out(particles_.positions[k], particles_.velocities[k], skin);
-    });
+    emitted = emit_diffuse(state, potentials_, budget, step, dt, setup_.fluid.particle_radius, particles_,
+                           emission_buffers_);
+    // A newborn sampled around a fluid particle that hugs a wall may start inside it.
+    if (!solids.empty())
+      parallel_for(particles_.size() - old_count, 4096, [&](size_t b, size_t e) {
+        for (size_t k = old_count + b; k < old_count + e; ++k)
+          solids.push_out(particles_.positions[k], particles_.velocities[k], skin);
+      });
   }
   pending_.generated += emitted.emitted;
   pending_.dropped += emitted.requested - emitted.emitted;
 
   // Compact: survivors in cell order (spatially coherent for the next step), then the newborns.
-  StageTimer t(pending_, Stage::Advect);
-  std::vector<uint32_t> order;
-  order.reserve(particles_.size());
-  for (uint32_t i : samples_.cell_order) {
-    if (alive[i] == 1) order.push_back(i);
-    else if (alive[i] == 0) ++pending_.dissolved;
-    else ++pending_.removed;
-  }
-  for (size_t i = old_count; i < particles_.size(); ++i) {
-    if (setup_.domain.empty() || setup_.domain.contains(particles_.positions[i])) order.push_back(uint32_t(i));
-    else ++pending_.removed;
-  }
-  DiffuseFrame next;
-  next.index = particles_.index;
-  next.time = particles_.time;
-  next.resize(order.size());
-  parallel_for(order.size(), 1 << 14, [&](size_t b, size_t e) {
+  StageTimer timer(pending_, Stage::Advect);
+  const size_t born = particles_.size() - old_count;
+  order_.resize(particles_.size());
+  const std::vector<uint32_t>& cell_order = samples_.cell_order;
+  const size_t survivors = parallel_select(
+      old_count, [&](size_t s) { return alive_[cell_order[s]] == 1; },
+      [&](size_t s, size_t k) { order_[k] = cell_order[s]; });
+  const size_t kept_born = parallel_select(
+      born, [&](size_t k) { return !limit || setup_.domain.contains(particles_.positions[old_count + k]); },
+      [&](size_t k, size_t slot) { order_[survivors + slot] = uint32_t(old_count + k); });
+  pending_.removed += born - kept_born;
+  const size_t count = survivors + kept_born;
+  // Room for the next step's newborns, so that emission rarely has to move every particle.
+  if (spare_.positions.capacity() < count) spare_.reserve(count + count / 8);
+  spare_.resize(count);
+  spare_.index = particles_.index;
+  spare_.time = particles_.time;
+  parallel_for(count, 1 << 14, [&](size_t b, size_t e) {
     for (size_t k = b; k < e; ++k) {
-      const uint32_t i = order[k];
-      next.ids[k] = particles_.ids[i];
-      next.positions[k] = particles_.positions[i];
-      next.velocities[k] = particles_.velocities[i];
-      next.lifetimes[k] = particles_.lifetimes[i];
-      next.types[k] = particles_.types[i];
+      const uint32_t i = order_[k];
+      spare_.ids[k] = particles_.ids[i];
+      spare_.positions[k] = particles_.positions[i];
+      spare_.velocities[k] = particles_.velocities[i];
+      spare_.lifetimes[k] = particles_.lifetimes[i];
+      spare_.types[k] = particles_.types[i];
     }
   });
-  particles_ = std::move(next);
+  std::swap(particles_, spare_);
 }
 
 FrameStats DiffuseSimulator::process_frame(const FluidFrame& a, const FluidFrame* b,
@@ -164,7 +182,7 @@ FrameStats DiffuseSimulator::process_frame(const FluidFrame& a, const FluidFrame
 
   // Frame a's output: the particles where they are, classified against a's fluid.
   interpolate_fluid(pair, 0.0f, mass, state_);
-  classify(state_, uint32_t(first_step), b != nullptr);
+  classify(state_, uint32_t(first_step), b != nullptr, a.time);
   particles_.index = a.index;
   particles_.time = a.time;
   pending_.frame = a.index;
@@ -181,9 +199,9 @@ FrameStats DiffuseSimulator::process_frame(const FluidFrame& a, const FluidFrame
     const uint32_t step_index = uint32_t(first_step + s);
     if (s > 0) {
       interpolate_fluid(pair, float(s) / float(p.substeps), mass, state_);
-      classify(state_, step_index, true);
+      classify(state_, step_index, true, a.time + frame_dt * s / p.substeps);
     }
-    step(state_, step_index, dt);
+    step(state_, step_index, dt, s + 1 == p.substeps ? b->time : a.time + frame_dt * (s + 1) / p.substeps);
   }
   particles_.time = b->time;
   return done;

@@ -7,6 +7,7 @@
 #include <functional>
 
 #include "core/frames.h"
+#include "diffuse/emission.h"
 #include "diffuse/fluid_sampling.h"
 #include "diffuse/fluid_state.h"
 #include "diffuse/params.h"
@@ -56,9 +57,12 @@ class DiffuseSimulator {
 
  private:
   // classify(): grid over the fluid at t, neighbour counts and fluid velocities at every diffuse
-  // particle, types. step(): advection, solids, dissolution, emission, compaction over [t, t + dt].
-  void classify(const FluidStepState& state, uint32_t step, bool sample_velocity);
-  void step(const FluidStepState& state, uint32_t step, float dt);
+  // particle, types (with the solids as they stand at t). step(): advection, solids at t + dt,
+  // dissolution, emission, compaction over [t, t + dt].
+  void classify(const FluidStepState& state, uint32_t step, bool sample_velocity, double t);
+  void step(const FluidStepState& state, uint32_t step, float dt, double t_end);
+  // The solids at time t: the set as given when nothing moves, else a snapshot kept in `slot`.
+  const SolidSet& solids_at(double t, SolidSet& slot) const;
 
   DiffuseSetup setup_;
   DiffuseFrame particles_;
@@ -67,6 +71,12 @@ class DiffuseSimulator {
   std::vector<Vec3f> sorted_motion_;
   FluidSamples samples_;
   FormationPotentials potentials_;
+  // Buffers reused every step (fresh memory costs a page fault per 4 KiB).
+  std::vector<uint8_t> alive_;  // 1 alive, 0 dissolved, 2 left the domain
+  std::vector<uint32_t> order_;
+  DiffuseFrame spare_;
+  EmissionBuffers emission_buffers_;
+  SolidSet classify_solids_, step_solids_;
   FrameStats pending_;  // accumulates between frames
   float particle_volume_;
   float rest_number_density_;

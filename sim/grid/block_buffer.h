@@ -20,6 +20,10 @@ class BlockBuffer {
  public:
   // Gathers positions and, for each attribute array (indexed by sorted point), its three components.
   void gather(const NeighbourGrid& grid, uint32_t key, std::initializer_list<std::span<const Vec3f>> attributes = {});
+  // The points of `source` (and their attributes) that lie in `box`, in source order, padded again.
+  // Scanning this smaller block instead of the whole 3x3x3 one gives the same sums when the box holds
+  // every point within h of the points to be summed for (the missing ones carry zero weight).
+  void gather_within(const BlockBuffer& source, const Aabb& box);
 
   size_t size() const { return x_.size(); }  // a multiple of kLanes
   const float* x() const { return x_.data(); }
@@ -30,6 +34,9 @@ class BlockBuffer {
   const uint32_t* sorted_index() const { return index_.data(); }  // padding: UINT32_MAX
 
  private:
+  void resize(size_t n, size_t attribute_count);
+  void pad(size_t used);
+
   std::vector<float> x_, y_, z_;
   std::vector<std::array<std::vector<float>, 3>> attributes_;
   std::vector<uint32_t> index_;

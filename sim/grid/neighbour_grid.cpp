@@ -39,7 +39,8 @@ void NeighbourGrid::build(std::span<const Vec3f> points, float support_radius) {
   for (int a = 0; a < 3; ++a) dims_[a] = int(std::floor(extent[a] / cell)) + 3;
 
   // Sort (key, index) pairs packed in 64 bits: unique, so the parallel sort is deterministic.
-  std::vector<uint64_t> packed(n);
+  std::vector<uint64_t>& packed = packed_;
+  packed.resize(n);
   parallel_for(n, 4096, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) packed[i] = (uint64_t(key_of(points[i])) << 32) | uint32_t(i);
   });
@@ -73,6 +74,22 @@ uint32_t NeighbourGrid::key_of(const Vec3f& p) const {
     c[a] = int(f);
   }
   return (uint32_t(c[2]) * uint32_t(dims_[1]) + uint32_t(c[1])) * uint32_t(dims_[0]) + uint32_t(c[0]);
+}
+
+uint32_t NeighbourGrid::octant_key_of(const Vec3f& p) const {
+  if (sorted_points_.empty()) return kOutside;
+  int c[3];
+  uint32_t octant = 0;
+  for (int a = 0; a < 3; ++a) {
+    // The same cell as key_of (same expression), then the half of it from the fractional part.
+    const float u = (p[a] - origin_[a]) / cell_;
+    const float f = std::floor(u);
+    if (!(f >= 0.0f) || f >= float(dims_[a])) return kOutside;
+    c[a] = int(f);
+    octant |= (u - f >= 0.5f ? 1u : 0u) << a;
+  }
+  const uint32_t key = (uint32_t(c[2]) * uint32_t(dims_[1]) + uint32_t(c[1])) * uint32_t(dims_[0]) + uint32_t(c[0]);
+  return key * 8 + octant;
 }
 
 std::array<NeighbourGrid::Range, 9> NeighbourGrid::block_ranges(uint32_t key) const {

@@ -37,6 +37,10 @@ class NeighbourGrid {
   // (then p has no neighbour within h).
   uint32_t key_of(const Vec3f& p) const;
   uint32_t key_count() const { return uint32_t(dims_[0]) * dims_[1] * dims_[2]; }
+  // key_of(p) * 8 plus which half of its cell p lies in along x (bit 0), y (bit 1) and z (bit 2);
+  // kOutside as key_of. Sorting by it groups points by half-cell. Needs key_count() <= kMaxOctantKeys.
+  uint32_t octant_key_of(const Vec3f& p) const;
+  static constexpr uint32_t kMaxOctantKeys = (1u << 29) - 1;
 
   // Occupied cells in sorted order: cell c holds sorted points [cell_begin(c), cell_begin(c + 1)).
   size_t occupied_cell_count() const { return occupied_keys_.size(); }
@@ -68,6 +72,7 @@ class NeighbourGrid {
   std::vector<uint32_t> occupied_keys_;
   std::vector<Vec3f> sorted_points_;
   std::vector<uint32_t> order_;
+  std::vector<uint64_t> packed_;  // build()'s (key, index) pairs, kept so rebuilding reuses the memory
 };
 
 }  // namespace spume

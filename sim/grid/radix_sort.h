@@ -1,12 +1,27 @@
 #pragma once
-// Stable LSD radix sort of 32-bit keys carrying a 32-bit payload. Stable, so the result depends only
-// on the input order (deterministic); linear time, for sorting millions of particles by cell.
+// Stable LSD radix sort of 32-bit keys carrying a 32-bit payload, parallel over fixed chunks. Stable,
+// so the result depends only on the input order (deterministic for any thread count); linear time,
+// for sorting millions of particles by cell.
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace spume {
 
-// Sorts indices 0..keys.size()-1 by keys (stable); only the low `key_bits` bits are examined.
+// Keeps its buffers between calls, so sorting every step touches no fresh memory.
+class RadixSorter {
+ public:
+  // Sorts indices 0..keys.size()-1 by keys (stable); only the low `key_bits` bits are examined.
+  void sort(std::span<const uint32_t> keys, int key_bits);
+  const std::vector<uint32_t>& order() const { return order_; }        // input index of each sorted slot
+  const std::vector<uint32_t>& sorted_keys() const { return keys_; }   // keys in sorted order
+  std::vector<uint32_t>& order() { return order_; }
+
+ private:
+  std::vector<uint32_t> order_, keys_, order_scratch_, key_scratch_, offsets_;
+};
+
+// One-off form of RadixSorter::sort: the sorted order of indices.
 std::vector<uint32_t> radix_sort_indices(const std::vector<uint32_t>& keys, int key_bits);
 
 }  // namespace spume

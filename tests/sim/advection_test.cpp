@@ -1,7 +1,9 @@
 // Classification (MODEL.md §3) and advection (§4, §8.4-8.6) against closed forms.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "diffuse/advection.h"
 #include "diffuse/fluid_sampling.h"
@@ -30,6 +32,50 @@ DiffuseType classify_with_neighbours(int n, const DiffuseType* previous = nullpt
   DiffuseParams p;
   p.hysteresis = hysteresis;
   return classify(samples.neighbour_count[0], p, previous);
+}
+
+TEST(FluidSampling, DenseCloudMatchesBruteForceCountsAndVelocities) {
+  // Many diffuse particles per half-cell, so that groups are cut down to their reach before the
+  // scan; the reference sums over every fluid particle with no grid at all.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  const float h = 0.25f;
+  std::vector<Vec3f> fluid(3000), motion(3000), diffuse(20000);
+  for (size_t j = 0; j < fluid.size(); ++j) {
+    fluid[j] = Vec3f(u(rng), u(rng), u(rng));
+    motion[j] = Vec3f(u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f);
+  }
+  for (auto& p : diffuse) p = Vec3f(1.4f * u(rng) - 0.2f, 1.4f * u(rng) - 0.2f, 1.4f * u(rng) - 0.2f);
+  NeighbourGrid grid;
+  grid.build(fluid, h);
+  std::vector<Vec3f> sorted_motion(fluid.size());
+  for (size_t j = 0; j < fluid.size(); ++j) sorted_motion[j] = motion[grid.sorted_to_original()[j]];
+  FluidSamples samples;
+  sample_fluid(grid, sorted_motion, diffuse, samples);
+  size_t with_fluid = 0;
+  for (size_t i = 0; i < diffuse.size(); ++i) {
+    double count = 0, borderline = 0, weight = 0;  // borderline: at h to within float rounding
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (size_t j = 0; j < fluid.size(); ++j) {
+      const double q2 = (fluid[j] - diffuse[i]).cast<double>().squaredNorm() / (double(h) * h);
+      if (std::abs(q2 - 1.0) < 1e-5) borderline += 1;
+      if (q2 > 1.0) continue;
+      count += 1;
+      weight += std::pow(1.0 - q2, 3);
+      sum += std::pow(1.0 - q2, 3) * motion[j].cast<double>();
+    }
+    ASSERT_LE(std::abs(samples.neighbour_count[i] - count), borderline) << i;
+    ASSERT_NEAR(samples.kernel_sum[i], weight, 1e-4 * (1 + weight)) << i;
+    if (weight > 1e-3) {
+      ++with_fluid;
+      ASSERT_NEAR((samples.fluid_velocity[i].cast<double>() - sum / weight).norm(), 0.0, 1e-4) << i;
+    }
+  }
+  EXPECT_GT(with_fluid, 10000u);
+  // cell_order is a permutation of the diffuse particles.
+  std::vector<uint32_t> order = samples.cell_order;
+  std::sort(order.begin(), order.end());
+  for (uint32_t i = 0; i < order.size(); ++i) ASSERT_EQ(order[i], i);
 }
 
 TEST(Classification, PaperThresholdsAt5And6And20And21Neighbours) {

@@ -81,5 +81,44 @@ TEST(RadixSort, IsAStableSortByKey) {
   }
 }
 
+TEST(RadixSort, ManyChunksMatchStdStableSortForOneAndTwoThreads) {
+  // 700k keys: several of the sort's 64k-element chunks, and 20 bits (two passes of 10).
+  std::mt19937 rng(6);
+  std::vector<uint32_t> keys(700000);
+  for (auto& k : keys) k = rng() % (1u << 20);
+  for (size_t i = 1000; i < 300000; ++i) keys[i] = keys[i - 1000];  // long runs of equal keys
+  std::vector<uint32_t> expected(keys.size());
+  for (uint32_t i = 0; i < expected.size(); ++i) expected[i] = i;
+  std::stable_sort(expected.begin(), expected.end(), [&](uint32_t a, uint32_t b) { return keys[a] < keys[b]; });
+  for (int threads : {1, 2}) {
+    set_thread_count(threads);
+    RadixSorter sorter;
+    sorter.sort(keys, 20);
+    ASSERT_EQ(sorter.order(), expected) << threads;
+    for (size_t i = 0; i < keys.size(); ++i) ASSERT_EQ(sorter.sorted_keys()[i], keys[expected[i]]);
+    sorter.sort(std::vector<uint32_t>(keys.begin(), keys.begin() + 10), 20);  // reused buffers shrink
+    ASSERT_EQ(sorter.order().size(), 10u);
+  }
+  set_thread_count(0);
+}
+
+TEST(ParallelSelect, KeepsTheSelectedIndicesInOrderForOneAndTwoThreads) {
+  const size_t n = 1000003;  // many chunks, the last one short
+  std::vector<size_t> expected;
+  for (size_t i = 0; i < n; ++i)
+    if (i % 7 == 3 || (i > 500000 && i < 500100)) expected.push_back(i);
+  for (int threads : {1, 2}) {
+    set_thread_count(threads);
+    std::vector<size_t> got(n, SIZE_MAX);
+    const size_t kept = parallel_select(
+        n, [](size_t i) { return i % 7 == 3 || (i > 500000 && i < 500100); }, [&](size_t i, size_t k) { got[k] = i; });
+    ASSERT_EQ(kept, expected.size());
+    got.resize(kept);
+    ASSERT_EQ(got, expected) << threads;
+  }
+  set_thread_count(0);
+  EXPECT_EQ(parallel_select(0, [](size_t) { return true; }, [](size_t, size_t) {}), 0u);
+}
+
 }  // namespace
 }  // namespace spume
