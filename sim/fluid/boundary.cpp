@@ -112,11 +112,19 @@ Boundary sample_boundary(const SolidSet& solids, float spacing, float h) {
         if (!(solid.min.array() < solid.max.array()).all()) fail("solid ", s, ": box min must be below max");
         sample_box_layers(solid.min, solid.max, spacing, layers, points, cell);
         volume.assign(points.size(), cell);
+        if (solid.rotated() && !solid.dynamics.enabled) {
+          const Vec3f c = solid.centre();
+          for (Vec3f& x : points) x = c + solid.orientation * (x - c);
+        }
         break;
       case Solid::Kind::Sphere:
         if (!(solid.radius > 0.0f)) fail("solid ", s, ": sphere radius must be > 0");
         sample_sphere_layers(solid.center, solid.radius, spacing, layers, points, volume);
         break;
+    }
+    if (solid.dynamics.enabled) {  // body frame: relative to the centre, unrotated
+      const Vec3f c = solid.centre();
+      for (Vec3f& x : points) x -= c;
     }
     if (points.size() + b.rest.size() >= size_t(UINT32_MAX) / 2) fail("solids: too many boundary particles");
     b.rest.insert(b.rest.end(), points.begin(), points.end());
@@ -128,37 +136,37 @@ Boundary sample_boundary(const SolidSet& solids, float spacing, float h) {
   return b;
 }
 
-void place_boundary(Boundary& b, const SolidSet& solids, double t, bool first) {
+void place_boundary(Boundary& b, const std::vector<SolidPlacement>& placements, bool first) {
   if (!first && !b.any_moving) return;  // static walls: grid, volumes and zero velocities stay
-  const auto& list = solids.solids();
-  std::vector<Vec3f> offset(list.size()), velocity(list.size());
-  for (size_t s = 0; s < list.size(); ++s) {
-    offset[s] = list[s].motion.offset(t);
-    velocity[s] = list[s].motion.velocity(t);
-  }
   const size_t n = b.size();
   std::vector<Vec3f> positions(n);
   parallel_for(n, 4096, [&](size_t lo, size_t hi) {
-    for (size_t i = lo; i < hi; ++i) positions[i] = b.rest[i] + offset[b.solid[i]];
+    for (size_t i = lo; i < hi; ++i) {
+      const SolidPlacement& s = placements[b.solid[i]];
+      positions[i] = s.body ? Vec3f(s.rotation * b.rest[i] + s.translation) : Vec3f(b.rest[i] + s.translation);
+    }
   });
   b.grid.build(positions, b.h);
   std::span<const uint32_t> order = b.grid.sorted_to_original();
   b.sorted_volume.resize(n);
-  b.sorted_velocity.resize(n);
+  b.sorted_solid.resize(n);
   for (size_t k = 0; k < n; ++k) {
     b.sorted_volume[k] = b.volume[order[k]];
-    b.sorted_velocity[k] = velocity[b.solid[order[k]]];
+    b.sorted_solid[k] = b.solid[order[k]];
   }
+  set_boundary_velocity(b, placements);
 }
 
-void set_boundary_step_velocity(Boundary& b, const SolidSet& solids, double t0, double t1) {
-  if (!b.any_moving) return;
-  const auto& list = solids.solids();
-  std::vector<Vec3f> velocity(list.size());
-  for (size_t s = 0; s < list.size(); ++s)
-    velocity[s] = ((list[s].motion.offset(t1) - list[s].motion.offset(t0)).cast<double>() / (t1 - t0)).cast<float>();
-  std::span<const uint32_t> order = b.grid.sorted_to_original();
-  for (size_t k = 0; k < b.size(); ++k) b.sorted_velocity[k] = velocity[b.solid[order[k]]];
+void set_boundary_velocity(Boundary& b, const std::vector<SolidPlacement>& placements) {
+  const size_t n = b.size();
+  b.sorted_velocity.resize(n);
+  std::span<const Vec3f> x = b.grid.sorted_points();
+  parallel_for(n, 4096, [&](size_t lo, size_t hi) {
+    for (size_t k = lo; k < hi; ++k) {
+      const SolidPlacement& s = placements[b.sorted_solid[k]];
+      b.sorted_velocity[k] = s.body ? Vec3f(s.velocity + s.angular_velocity.cross(x[k] - s.translation)) : s.velocity;
+    }
+  });
 }
 
 }  // namespace spume::fluid

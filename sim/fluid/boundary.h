@@ -21,7 +21,9 @@
 //
 // Geometry: tanks get L layers outside every wall (their open top excepted); boxes get L layers
 // inside their faces (all of it when thinner than 2L layers); spheres get L concentric Fibonacci
-// shells. L = number of layers within h of the surface (2 at the default spacing 2r).
+// shells. L = number of layers within h of the surface (2 at the default spacing 2r). Rotated boxes
+// are sampled in their own frame and turned about their centre. Dynamic bodies keep their particles
+// in the body frame (relative to the centre) and move with the body's full rigid transform.
 #include <cstdint>
 #include <vector>
 
@@ -33,30 +35,40 @@ namespace spume::fluid {
 
 struct Boundary {
   // Per particle, in sampling order.
-  std::vector<Vec3f> rest;      // position with the solid at zero offset, m
+  std::vector<Vec3f> rest;      // position with the solid at zero offset (bodies: in the body frame), m
   std::vector<uint32_t> solid;  // index into the solid set
   std::vector<float> volume;    // V_b, m^3
   // The grid over the current positions, and per-particle data in the grid's sorted order.
   NeighbourGrid grid;
   std::vector<float> sorted_volume;
   std::vector<Vec3f> sorted_velocity;  // m/s
+  std::vector<uint32_t> sorted_solid;  // index into the solid set
   bool any_moving = false;
   float h = 0.0f;  // kernel support, m
 
   size_t size() const { return rest.size(); }
 };
 
+// Where one solid's particles are: x = rest + translation, or for a dynamic body (rest in its frame)
+// x = rotation rest + translation, moving at velocity + angular_velocity x (x - translation).
+struct SolidPlacement {
+  Vec3f translation = Vec3f::Zero();                      // m
+  Eigen::Matrix3f rotation = Eigen::Matrix3f::Identity(); // bodies only
+  bool body = false;
+  Vec3f velocity = Vec3f::Zero();                         // m/s
+  Vec3f angular_velocity = Vec3f::Zero();                 // rad/s, bodies only
+};
+
 // Samples every solid at `spacing` (m, adjusted per axis to fit the solid exactly) within depth h.
 Boundary sample_boundary(const SolidSet& solids, float spacing, float h);
 
-// Places the particles at time t (a no-op after the first call when nothing moves: static walls keep
-// their grid, volumes and zero velocities) and
-// sets their velocities from each solid's motion at t.
-void place_boundary(Boundary& b, const SolidSet& solids, double t, bool first);
+// Places the particles (one placement per solid; a no-op after the first call when nothing moves:
+// static walls keep their grid, volumes and zero velocities) and sets their velocities.
+void place_boundary(Boundary& b, const std::vector<SolidPlacement>& placements, bool first);
 
-// Sets the sorted velocities to the mean velocity over [t0, t1] ((offset(t1) - offset(t0)) / (t1 - t0)),
-// which is what moves the wall during a step of the pressure solve.
-void set_boundary_step_velocity(Boundary& b, const SolidSet& solids, double t0, double t1);
+// Sets only the velocities (the wall speed during a step of the pressure solve), at the current
+// positions.
+void set_boundary_velocity(Boundary& b, const std::vector<SolidPlacement>& placements);
 
 // Layers of a box lattice (cells of about `spacing`, centres at lo + (i + 1/2) s), with the volume of
 // one cell. Tank: the `layers` cells outside [lo, hi] (none above hi along open_axis if >= 0);

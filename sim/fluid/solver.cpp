@@ -29,19 +29,73 @@ class StageTimer {
 FluidSolver::FluidSolver(FluidSolverParams params, const std::vector<FluidBlock>& blocks, SolidSet solids)
     : params_(params), solids_(std::move(solids)), kernel_(4.0f * params.particle_radius) {
   validate(params_);
-  for (size_t s = 0; s < solids_.solids().size(); ++s)
-    solids_.solids()[s].motion.validate(str("solid ", s).c_str());
+  solids_.validate();
   const float r = params_.particle_radius;
   volume_ = 8.0f * r * r * r;
   dt_prev_ = params_.max_dt;
   const SolidSet now = solids_.at_time(0.0);
   particles_ = fluid::fill_blocks(blocks, r, now, stats_.removed_at_start);
   if (particles_.size() == 0) fail("fluid solver: the fluid blocks hold no particles at radius ", r, " m");
+  bodies_ = fluid::RigidBodies(solids_, params_.gravity, 0.5f * r);
+  coupling_.body_of_solid.resize(solids_.solids().size());
+  for (size_t s = 0; s < solids_.solids().size(); ++s) coupling_.body_of_solid[s] = bodies_.body_of_solid(s);
+  for (const BodyPose& pose : bodies_.poses()) {
+    const Solid& s = solids_.solids()[pose.solid];
+    body_radius_.push_back(s.kind == Solid::Kind::Sphere ? s.radius : 0.5f * (s.max - s.min).norm());
+  }
+  sync_body_centres();
   boundary_ = fluid::sample_boundary(solids_, params_.boundary_spacing * r, kernel_.h);
-  fluid::place_boundary(boundary_, solids_, 0.0, true);
+  fluid::place_boundary(boundary_, placements_at(0.0), true);
   stats_.fluid_particles = particles_.size();
   stats_.boundary_particles = boundary_.size();
   update_neighbourhoods();
+}
+
+std::vector<fluid::SolidPlacement> FluidSolver::placements_at(double t) const {
+  const auto& list = solids_.solids();
+  std::vector<fluid::SolidPlacement> out(list.size());
+  for (size_t s = 0; s < list.size(); ++s) {
+    out[s].translation = list[s].motion.offset(t);
+    out[s].velocity = list[s].motion.velocity(t);
+  }
+  for (const BodyPose& pose : bodies_.poses()) {
+    fluid::SolidPlacement& s = out[pose.solid];
+    s.body = true;
+    s.translation = pose.position;
+    s.rotation = pose.orientation.toRotationMatrix();
+    s.velocity = pose.velocity;
+    s.angular_velocity = pose.angular_velocity;
+  }
+  return out;
+}
+
+std::vector<fluid::SolidPlacement> FluidSolver::step_placements(double t0, double t1) const {
+  std::vector<fluid::SolidPlacement> out = placements_at(t0);
+  const auto& list = solids_.solids();
+  for (size_t s = 0; s < list.size(); ++s)
+    if (!out[s].body)
+      out[s].velocity =
+          ((list[s].motion.offset(t1) - list[s].motion.offset(t0)).cast<double>() / (t1 - t0)).cast<float>();
+  return out;
+}
+
+double FluidSolver::body_speed() const {
+  double speed = 0.0;
+  for (size_t k = 0; k < bodies_.size(); ++k) {
+    const BodyPose& pose = bodies_.poses()[k];
+    speed = std::max(speed, double(pose.velocity.norm()) + double(pose.angular_velocity.norm()) * body_radius_[k]);
+  }
+  return speed;
+}
+
+void FluidSolver::sync_body_centres() {
+  coupling_.centre.clear();
+  for (const BodyPose& pose : bodies_.poses()) coupling_.centre.push_back(pose.position);
+}
+
+SolidSet FluidSolver::solids_now() const {
+  SolidSet now = solids_.at_time(time_);
+  return bodies_.empty() ? now : now.posed(bodies_.poses());
 }
 
 void FluidSolver::update_neighbourhoods() {
@@ -61,6 +115,9 @@ double FluidSolver::step_to(double target) {
   auto& seconds = stats_.stage_seconds;
   fluid::Particles& p = particles_;
   const size_t n = p.size();
+  const bool coupled = !bodies_.empty();
+  const float particle_mass = params_.rest_density * volume_;
+  if (coupled) loads_.reset(bodies_.size());
 
   // Divergence-free solve at the current positions ([BK17], divergence-free solver). Its result does not depend on
   // dt except through the error measure, so the previous step size is used.
@@ -70,13 +127,16 @@ double FluidSolver::step_to(double target) {
     divergence_iterations_ += uint64_t(r.iterations);
     stats_.divergence_error = r.error;
     stats_.divergence_unconverged += r.converged ? 0 : 1;
+    if (coupled) fluid::add_pressure_impulse(neighbourhoods_, boundary_, coupling_, particle_mass, dt_prev_, p, loads_);
   }
 
   double dt;
   {
     StageTimer timer(seconds[size_t(FluidStage::Forces)]);
     fluid::non_pressure_accelerations(params_, neighbourhoods_, boundary_, kernel_.h, volume_, dt_prev_, p);
-    const fluid::TimeStepChoice choice = fluid::cfl_time_step(params_, p, dt_prev_, solids_, time_);
+    if (coupled)
+      fluid::add_viscous_force(params_, neighbourhoods_, boundary_, coupling_, particle_mass, kernel_.h, p, loads_);
+    const fluid::TimeStepChoice choice = fluid::cfl_time_step(params_, p, dt_prev_, solids_, time_, body_speed());
     stats_.dt_clamped_to_min += choice.clamped_to_min ? 1 : 0;
     dt = fluid::fit_to_remaining(choice.dt, target - time_);
   }
@@ -89,12 +149,13 @@ double FluidSolver::step_to(double target) {
     parallel_for(n, 4096, [&](size_t b, size_t e) {
       for (size_t i = b; i < e; ++i) p.v[i] += fdt * p.accel[i];
     });
-    fluid::set_boundary_step_velocity(boundary_, solids_, time_, t_end);
+    if (boundary_.any_moving) fluid::set_boundary_velocity(boundary_, step_placements(time_, t_end));
     const fluid::SolveResult r = fluid::density_solve(params_, neighbourhoods_, boundary_, dt, p);
     density_iterations_ += uint64_t(r.iterations);
     stats_.density_error = r.error;
     stats_.max_density_error = std::max(stats_.max_density_error, r.error);
     stats_.density_unconverged += r.converged ? 0 : 1;
+    if (coupled) fluid::add_pressure_impulse(neighbourhoods_, boundary_, coupling_, particle_mass, dt, p, loads_);
   }
 
   // Advect, move the solids, and keep every particle in free space.
@@ -104,8 +165,14 @@ double FluidSolver::step_to(double target) {
     parallel_for(n, 4096, [&](size_t b, size_t e) {
       for (size_t i = b; i < e; ++i) p.x[i] += fdt * p.v[i];
     });
+    if (coupled) {
+      std::vector<Vec3d> force, torque;
+      loads_.totals(dt, force, torque);
+      bodies_.step(time_, dt, force, torque);
+      sync_body_centres();
+    }
     time_ = t_end;
-    fluid::place_boundary(boundary_, solids_, time_, false);
+    fluid::place_boundary(boundary_, placements_at(time_), false);
     project_out_of_solids();
   }
 
@@ -121,7 +188,7 @@ double FluidSolver::step_to(double target) {
 void FluidSolver::project_out_of_solids() {
   fluid::Particles& p = particles_;
   const size_t n = p.size();
-  const SolidSet now = solids_.at_time(time_);
+  const SolidSet now = solids_now();
   const float skin = params_.push_out_skin * params_.particle_radius;
   // Counts are exact integers in double, so the sum is thread-independent anyway.
   const double bad = fluid::chunked_sum(n, [&](size_t b, size_t e) {

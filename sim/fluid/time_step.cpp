@@ -8,14 +8,14 @@
 namespace spume::fluid {
 
 TimeStepChoice cfl_time_step(const FluidSolverParams& params, const Particles& p, double dt_prev,
-                             const SolidSet& solids, double t) {
+                             const SolidSet& solids, double t, double body_speed) {
   const float fdt = float(dt_prev);
   const double v2 = chunked_max(p.size(), 0.0, [&](size_t b, size_t e) {
     float m = 0.0f;
     for (size_t i = b; i < e; ++i) m = std::max(m, (p.v[i] + fdt * p.accel[i]).squaredNorm());
     return double(m);
   });
-  double speed = std::sqrt(v2);
+  double speed = std::max(std::sqrt(v2), body_speed);
   for (const Solid& s : solids.solids())
     if (s.motion.moving()) speed = std::max(speed, double(s.motion.velocity(t).norm()));
   TimeStepChoice c;

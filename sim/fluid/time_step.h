@@ -14,10 +14,10 @@ struct TimeStepChoice {
 
 // dt = cfl * 2r / u, u = the largest of |v_i + dt_prev a_i| (the speed after this step's non-pressure
 // acceleration, so a fluid at rest under gravity is not given an unbounded step) and the speed of any
-// moving solid at time t; also at most h^2 / (32 nu) (explicit viscosity); clamped to
+// moving solid at time t (and `body_speed`, the fastest point of any dynamic body); also at most h^2 / (32 nu) (explicit viscosity); clamped to
 // [min_dt, max_dt]. Max is exact, so this is thread-independent.
 TimeStepChoice cfl_time_step(const FluidSolverParams& params, const Particles& p, double dt_prev,
-                             const SolidSet& solids, double t);
+                             const SolidSet& solids, double t, double body_speed = 0.0);
 
 // Shortens dt so that stepping reaches `remaining` (s) exactly without a sliver step at the end: when
 // remaining < 2 dt, the rest is split into halves (each at least dt / 2) or taken whole (also when

@@ -27,6 +27,17 @@ float box_distance(const Vec3f& p, const Vec3f& lo, const Vec3f& hi, Vec3f& norm
   return q[axis];
 }
 
+// box_distance in the box's own frame for a rotated box (normal turned back into the world).
+float oriented_box_distance(const Solid& s, const Vec3f& p, Vec3f& normal) {
+  if (!s.rotated()) return box_distance(p, s.min, s.max, normal);
+  const Vec3f c = s.centre();
+  const Vec3f local = c + s.orientation.conjugate() * (p - c);
+  Vec3f n;
+  const float d = box_distance(local, s.min, s.max, n);
+  normal = s.orientation * n;
+  return d;
+}
+
 }  // namespace
 
 Vec3f Motion::offset(double t) const {
@@ -99,8 +110,68 @@ Solid Solid::translated(const Vec3f& offset) const {
   return s;
 }
 
+Vec3f Solid::centre() const { return kind == Kind::Sphere ? center : Vec3f(0.5f * (min + max)); }
+
+bool Solid::rotated() const {
+  return orientation.w() != 1.0f || orientation.x() != 0.0f || orientation.y() != 0.0f || orientation.z() != 0.0f;
+}
+
+float Solid::volume() const {
+  if (kind == Kind::Sphere) return 4.0f / 3.0f * std::numbers::pi_v<float> * radius * radius * radius;
+  const Vec3f e = max - min;
+  return e.x() * e.y() * e.z();
+}
+
+Vec3f Solid::velocity_at(const Vec3f& p) const {
+  if (angular_velocity == Vec3f::Zero()) return velocity;
+  return velocity + angular_velocity.cross(p - centre());
+}
+
 bool SolidSet::any_moving() const {
-  return std::any_of(solids_.begin(), solids_.end(), [](const Solid& s) { return s.motion.moving(); });
+  return std::any_of(solids_.begin(), solids_.end(),
+                     [](const Solid& s) { return s.motion.moving() || s.dynamics.enabled; });
+}
+
+bool SolidSet::any_dynamic() const {
+  return std::any_of(solids_.begin(), solids_.end(), [](const Solid& s) { return s.dynamics.enabled; });
+}
+
+void SolidSet::validate() const {
+  for (size_t i = 0; i < solids_.size(); ++i) {
+    const Solid& s = solids_[i];
+    const std::string where = str("solid ", i);
+    s.motion.validate(where.c_str());
+    const Quatf& q = s.orientation;
+    if (!std::isfinite(q.w()) || !std::isfinite(q.x()) || !std::isfinite(q.y()) || !std::isfinite(q.z()) ||
+        std::abs(q.norm() - 1.0f) > 1e-4f)
+      fail(where, ": orientation must be a unit quaternion, found norm ", q.norm());
+    if (s.kind == Solid::Kind::Tank && s.rotated()) fail(where, ": a tank cannot be rotated");
+    if (!s.dynamics.enabled) continue;
+    const Dynamics& d = s.dynamics;
+    if (s.kind == Solid::Kind::Tank) fail(where, ": a tank cannot be dynamic (only boxes and spheres)");
+    if (s.motion.moving()) fail(where, ": a dynamic solid cannot also have a motion");
+    if (!(d.mass > 0.0f) && !(d.density > 0.0f))
+      fail(where, ": a dynamic solid needs a density > 0 (kg/m^3) or a mass > 0 (kg); found density ", d.density,
+           ", mass ", d.mass);
+    if (!std::isfinite(d.mass) || !std::isfinite(d.density) || d.mass < 0.0f || d.density < 0.0f)
+      fail(where, ": dynamic density and mass must be finite and >= 0");
+    if (!(d.friction >= 0.0f) || !std::isfinite(d.friction))
+      fail(where, ": dynamic friction must be finite and >= 0, found ", d.friction);
+  }
+}
+
+SolidSet SolidSet::posed(const std::vector<BodyPose>& poses) const {
+  SolidSet out = *this;
+  for (const BodyPose& pose : poses) {
+    if (pose.solid >= out.solids_.size() || !out.solids_[pose.solid].dynamics.enabled)
+      fail("solids: body pose for solid ", pose.solid, ", which is not a dynamic solid");
+    Solid& s = out.solids_[pose.solid];
+    s = s.translated(pose.position - s.centre());
+    s.orientation = pose.orientation;
+    s.velocity = pose.velocity;
+    s.angular_velocity = pose.angular_velocity;
+  }
+  return out;
 }
 
 SolidSet SolidSet::at_time(double t) const {
@@ -137,7 +208,7 @@ float SolidSet::solid_volume_within(const Vec3f& p, float h) const {
         break;
       case Solid::Kind::Box: {
         Vec3f n;
-        volume += sphere_cap_volume(box_distance(p, s.min, s.max, n), h);
+        volume += sphere_cap_volume(oriented_box_distance(s, p, n), h);
         break;
       }
       case Solid::Kind::Sphere:
@@ -150,15 +221,15 @@ float SolidSet::solid_volume_within(const Vec3f& p, float h) const {
 
 bool SolidSet::push_out(Vec3f& p, Vec3f& v, float skin) const {
   bool moved = false;
-  const Vec3f* wall_velocity = nullptr;
+  const Solid* solid = nullptr;
   auto push = [&](const Vec3f& normal, float depth) {  // depth > 0: how far p is inside along -normal
     p += (depth + skin) * normal;
-    const float vn = (v - *wall_velocity).dot(normal);  // relative to a moving wall
+    const float vn = (v - solid->velocity_at(p)).dot(normal);  // relative to a moving wall
     if (vn < 0.0f) v -= vn * normal;
     moved = true;
   };
   for (const Solid& s : solids_) {
-    wall_velocity = &s.velocity;
+    solid = &s;
     switch (s.kind) {
       case Solid::Kind::Tank:
         for (int a = 0; a < 3; ++a) {
@@ -176,7 +247,7 @@ bool SolidSet::push_out(Vec3f& p, Vec3f& v, float skin) const {
         break;
       case Solid::Kind::Box: {
         Vec3f n;
-        const float d = box_distance(p, s.min, s.max, n);
+        const float d = oriented_box_distance(s, p, n);
         if (d < 0.0f) push(n, -d);
         break;
       }

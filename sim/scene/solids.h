@@ -1,13 +1,21 @@
 #pragma once
 // Solids of a scene, as the diffuse model and the fluid solver see them: where particles may not go,
-// and how many fluid neighbours a solid stands in for (MODEL.md §8.11, §8.12). Solids are static or
-// KINEMATIC: a prescribed translation over time (a wave-making piston or flap, a hull on a path).
-// Rotation is not supported; dynamic (two-way coupled) bodies are not part of this header.
+// and how many fluid neighbours a solid stands in for (MODEL.md §8.11, §8.12). A solid is
+//  - static;
+//  - KINEMATIC: a prescribed translation over time (a wave-making piston or flap, a hull on a path),
+//    translation only (a box may have a fixed orientation, which its motion keeps);
+//  - DYNAMIC (boxes and spheres): a rigid body two-way coupled with the fluid solver, which owns its
+//    trajectory (fluid/rigid_bodies.h). A SolidSet holds such a body at its initial pose; the pose at
+//    a later time comes from the solver (FluidSolver::body_poses) and is applied with `posed`.
+// Boxes may be rotated (orientation about their centre); tanks are axis-aligned.
+#include <cstdint>
 #include <vector>
 
 #include "core/vec.h"
 
 namespace spume {
+
+using Quatf = Eigen::Quaternionf;
 
 // A prescribed translation of a solid, added to its geometry as given in the scene.
 //  - None: static.
@@ -34,6 +42,24 @@ struct Motion {
   void validate(const char* where) const;
 };
 
+// Mass properties of a dynamic solid (a rigid body simulated with Bullet, pushed by the fluid).
+struct Dynamics {
+  bool enabled = false;
+  float density = 0.0f;   // kg/m^3; the mass is density x volume unless `mass` is set
+  float mass = 0.0f;      // kg; > 0 overrides density
+  float friction = 0.5f;  // Coulomb coefficient in contacts with other solids (dimensionless)
+};
+
+// Where a dynamic solid is at some time: its centre (box centre, sphere centre), orientation and
+// velocities. `solid` indexes the SolidSet it belongs to.
+struct BodyPose {
+  uint32_t solid = 0;
+  Vec3f position = Vec3f::Zero();             // m, centre of mass
+  Quatf orientation = Quatf::Identity();      // body frame -> world
+  Vec3f velocity = Vec3f::Zero();             // m/s, of the centre
+  Vec3f angular_velocity = Vec3f::Zero();     // rad/s, world frame
+};
+
 struct Solid {
   enum class Kind {
     Tank,    // hollow box: free space inside, walls on its faces (the top may be open)
@@ -46,10 +72,20 @@ struct Solid {
   float radius = 0.0f;                             // Sphere
   bool open_top = true;                            // Tank: no wall at max along "up"
   int up_axis = 1;                                 // Tank: which axis is up (opposite gravity)
+  // Box, Sphere: rotation about the centre, body frame -> world; the box's min/max are its extent in
+  // its own frame (centred on (min + max) / 2). Tanks must keep the identity.
+  Quatf orientation = Quatf::Identity();
   Motion motion;                                   // kinematic translation (None: static)
-  Vec3f velocity = Vec3f::Zero();                  // m/s: set on snapshots from SolidSet::at_time
+  Dynamics dynamics;                               // enabled: a rigid body (motion must be None)
+  Vec3f velocity = Vec3f::Zero();                  // m/s: set on snapshots (at_time, posed)
+  Vec3f angular_velocity = Vec3f::Zero();          // rad/s, world frame: set on snapshots (posed)
 
   Solid translated(const Vec3f& offset) const;  // the same solid moved rigidly by offset
+  Vec3f centre() const;                         // Box: (min + max) / 2, Sphere: center, Tank: (min + max) / 2
+  bool rotated() const;                         // orientation is not exactly the identity
+  float volume() const;                         // m^3 (Box, Sphere)
+  // Velocity of the solid's material at world point p: velocity + angular_velocity x (p - centre).
+  Vec3f velocity_at(const Vec3f& p) const;
 };
 
 class SolidSet {
@@ -58,21 +94,33 @@ class SolidSet {
   explicit SolidSet(std::vector<Solid> solids) : solids_(std::move(solids)) {}
   bool empty() const { return solids_.empty(); }
   const std::vector<Solid>& solids() const { return solids_; }
-  bool any_moving() const;
+  bool any_moving() const;   // a kinematic motion or a dynamic body
+  bool any_dynamic() const;
 
   // The solids at time t (s): each moved by its motion's offset(t), with `velocity` set to the
   // motion's velocity at t and the motion itself cleared, so the snapshot is a static set that
   // remembers how fast each solid moves (push_out then works relative to the moving wall).
+  // Dynamic bodies stay at their initial pose (see `posed`).
   SolidSet at_time(double t) const;
+
+  // This set with each listed dynamic body moved to its pose (centre, orientation, velocities); the
+  // bodies keep their Dynamics. Throws Error if a pose names a solid that is not dynamic.
+  SolidSet posed(const std::vector<BodyPose>& poses) const;
+
+  // Throws Error naming the solid for what the solvers cannot handle: bad motions, a rotated tank, a
+  // dynamic tank or a dynamic solid with a motion, non-positive mass or density, bad friction.
+  void validate() const;
 
   // Volume within distance h of p that lies inside solids, treating each nearby solid face as a plane
   // (exact for a flat wall, an approximation at edges and on curved obstacles), capped at the sphere.
-  // Uses the geometry as stored (call on at_time(t) for moving solids).
+  // Uses the geometry as stored (call on at_time(t) for moving solids). Rotated boxes are measured in
+  // their own frame.
   float solid_volume_within(const Vec3f& p, float h) const;
 
   // Moves p into free space if it is inside a solid, onto the surface plus `skin`, and removes the
-  // velocity component pointing into the solid (relative to the solid's `velocity`, zero for static
-  // solids). Returns true if p was moved. Uses the geometry as stored.
+  // velocity component pointing into the solid (relative to the solid's velocity at p, see
+  // Solid::velocity_at; zero for static solids). Returns true if p was moved. Uses the geometry as
+  // stored; a rotated box pushes along its own face normals.
   bool push_out(Vec3f& p, Vec3f& v, float skin) const;
 
   // True when p is inside a solid (or outside a tank's walls): push_out would move it.

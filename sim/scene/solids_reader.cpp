@@ -42,6 +42,26 @@ Motion read_motion(const ParamReader& m) {
   return motion;
 }
 
+Quatf read_rotation(const ParamReader& r) {
+  const Vec3f axis = required_vec3(r, "axis", "the rotation axis [x, y, z]");
+  if (!(axis.norm() > 0.0f) || !finite(axis)) r.fail_at("axis", "must be a non-zero direction [x, y, z]");
+  if (!r.has("angle")) r.fail_at("angle", "missing: the rotation angle in rad");
+  const double angle = r.number_in("angle", 0.0, -1e3, 1e3);
+  return Quatf(Eigen::AngleAxisf(float(angle), axis.normalized())).normalized();
+}
+
+Dynamics read_dynamics(const ParamReader& d) {
+  const Dynamics defaults;
+  Dynamics out;
+  out.enabled = true;
+  if (d.has("mass") == d.has("density"))
+    d.fail_at("density", "give exactly one of \"density\" (kg/m^3) and \"mass\" (kg)");
+  if (d.has("density")) out.density = float(d.positive("density", defaults.density));
+  if (d.has("mass")) out.mass = float(d.positive("mass", defaults.mass));
+  out.friction = float(d.number_in("friction", defaults.friction, 0.0, 100.0));
+  return out;
+}
+
 }  // namespace
 
 SolidSet read_solids(const ParamReader& root, const Vec3f& gravity) {
@@ -67,11 +87,22 @@ SolidSet read_solids(const ParamReader& root, const Vec3f& gravity) {
         s.up_axis = up;
       }
     }
+    if (r.has("rotation")) {
+      if (s.kind != Solid::Kind::Box) r.fail_at("rotation", "only boxes can be rotated");
+      s.orientation = read_rotation(r.child("rotation"));
+    }
     if (r.has("motion")) s.motion = read_motion(r.child("motion"));
     with_context(r.source() + ": " + r.path_of("motion"), [&] { s.motion.validate("motion"); });
+    if (r.has("dynamic")) {
+      if (s.kind == Solid::Kind::Tank) r.fail_at("dynamic", "a tank cannot be dynamic (only boxes and spheres)");
+      if (r.has("motion")) r.fail_at("dynamic", "a solid has either a \"motion\" or \"dynamic\", not both");
+      s.dynamics = read_dynamics(r.child("dynamic"));
+    }
     solids.push_back(std::move(s));
   }
-  return SolidSet(std::move(solids));
+  SolidSet set(std::move(solids));
+  with_context(root.source() + ": " + root.path_of("solids"), [&] { set.validate(); });
+  return set;
 }
 
 }  // namespace spume

@@ -12,10 +12,18 @@
 //                 "phase": 0,                         // rad
 //                 "start": 0}},                       // s; at rest before
 //     {"type": "box", ..., "motion": {"type": "keyframes",
-//                 "keys": [{"time": 0, "offset": [0, 0, 0]}, {"time": 2, "offset": [1, 0, 0]}]}}  // s, m
+//                 "keys": [{"time": 0, "offset": [0, 0, 0]}, {"time": 2, "offset": [1, 0, 0]}]}},  // s, m
+//     {"type": "box", "min": [..], "max": [..],                                  // a floating crate
+//      "rotation": {"axis": [0, 0, 1], "angle": 0.3},    // optional, boxes only: about the box centre, rad
+//      "dynamic": {"density": 500,                       // kg/m^3, or "mass": kg (exactly one of them)
+//                  "friction": 0.5}},                    // Coulomb coefficient, default 0.5
+//     {"type": "sphere", ..., "dynamic": {"mass": 2.0}}
 //   ]
 // Motions translate the solid: offset(t) is added to its geometry (scene/solids.h). A tank's "up" is
-// the axis along which gravity is strongest.
+// the axis along which gravity is strongest. A "dynamic" box or sphere is a rigid body moved by
+// gravity, the fluid's pressure and viscosity, and contacts (Bullet; fluid/rigid_bodies.h); it cannot
+// also have a motion, and tanks cannot be dynamic. Only the built-in solver (fluid.source "solver")
+// moves dynamic bodies.
 #include "core/params.h"
 #include "scene/solids.h"
 

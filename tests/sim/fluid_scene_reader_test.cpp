@@ -1,6 +1,7 @@
 // Scene keys of the fluid solver and the solids: values, defaults, and errors that name the key.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 #include "core/error.h"
@@ -116,6 +117,62 @@ TEST(SolidsReader, ErrorsNameTheKey) {
               read(R"({"solids": [{"type": "box", "min": [0,0,0], "max": [1,1,1],
                        "motion": {"type": "sine", "axis": [0,0,0]}}]})");
             }).find("/solids/0/motion/axis"),
+            std::string::npos);
+}
+
+TEST(SolidsReader, ReadsDynamicBodiesAndRotations) {
+  const ParamReader root = ParamReader::from_json(Json::parse(R"({"solids": [
+    {"type": "box", "min": [0, 0, 0], "max": [0.2, 0.1, 0.2], "rotation": {"axis": [0, 0, 2], "angle": 0.5},
+     "dynamic": {"density": 500}},
+    {"type": "sphere", "center": [1, 1, 1], "radius": 0.1, "dynamic": {"mass": 2.5, "friction": 0.2}},
+    {"type": "box", "min": [0, 0, 0], "max": [1, 1, 1]}
+  ]})"), "s.json");
+  const SolidSet set = read_solids(root, Vec3f(0, -9.81f, 0));
+  const Dynamics defaults;
+  ASSERT_EQ(set.solids().size(), 3u);
+  const Solid& box = set.solids()[0];
+  EXPECT_TRUE(box.dynamics.enabled);
+  EXPECT_FLOAT_EQ(box.dynamics.density, 500.0f);
+  EXPECT_FLOAT_EQ(box.dynamics.mass, 0.0f);
+  EXPECT_FLOAT_EQ(box.dynamics.friction, defaults.friction);
+  // Rotation by 0.5 rad about z: the quaternion (cos 0.25, 0, 0, sin 0.25).
+  EXPECT_NEAR(box.orientation.w(), std::cos(0.25f), 1e-6f);
+  EXPECT_NEAR(box.orientation.z(), std::sin(0.25f), 1e-6f);
+  EXPECT_FLOAT_EQ(set.solids()[1].dynamics.mass, 2.5f);
+  EXPECT_FLOAT_EQ(set.solids()[1].dynamics.friction, 0.2f);
+  EXPECT_FALSE(set.solids()[2].dynamics.enabled);
+  EXPECT_FALSE(set.solids()[2].rotated());
+  EXPECT_TRUE(set.any_dynamic());
+}
+
+TEST(SolidsReader, DynamicErrorsNameTheKey) {
+  auto error = [](const char* text) {
+    return error_of([&] { read_solids(ParamReader::from_json(Json::parse(text), "s.json"), Vec3f(0, -9.81f, 0)); });
+  };
+  EXPECT_NE(error(R"({"solids": [{"type": "box", "min": [0,0,0], "max": [1,1,1], "dynamic": {}}]})")
+                .find("/solids/0/dynamic/density"),
+            std::string::npos);
+  EXPECT_NE(error(R"({"solids": [{"type": "box", "min": [0,0,0], "max": [1,1,1],
+                                  "dynamic": {"density": 1, "mass": 2}}]})")
+                .find("/solids/0/dynamic/density"),
+            std::string::npos);
+  EXPECT_NE(error(R"({"solids": [{"type": "box", "min": [0,0,0], "max": [1,1,1], "dynamic": {"mass": -1}}]})")
+                .find("/solids/0/dynamic/mass"),
+            std::string::npos);
+  EXPECT_NE(error(R"({"solids": [{"type": "tank", "min": [0,0,0], "max": [1,1,1], "dynamic": {"mass": 1}}]})")
+                .find("/solids/0/dynamic"),
+            std::string::npos);
+  EXPECT_NE(error(R"({"solids": [{"type": "box", "min": [0,0,0], "max": [1,1,1], "dynamic": {"mass": 1},
+                                  "motion": {"type": "sine", "axis": [1,0,0]}}]})")
+                .find("/solids/0/dynamic"),
+            std::string::npos);
+  EXPECT_NE(error(R"({"solids": [{"type": "sphere", "center": [0,0,0], "radius": 1,
+                                  "rotation": {"axis": [1,0,0], "angle": 1}}]})")
+                .find("/solids/0/rotation"),
+            std::string::npos);
+  EXPECT_NE(error(R"({"solids": [{"type": "box", "min": [0,0,0], "max": [1,1,1],
+                                  "rotation": {"axis": [0,0,0], "angle": 1}}]})")
+                .find("/solids/0/rotation/axis"),
             std::string::npos);
 }
 

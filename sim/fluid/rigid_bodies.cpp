@@ -1,0 +1,162 @@
+#include "rigid_bodies.h"
+
+#include <btBulletDynamicsCommon.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+
+namespace spume::fluid {
+namespace {
+
+btVector3 bt(const Vec3f& v) { return btVector3(v.x(), v.y(), v.z()); }
+btVector3 bt(const Vec3d& v) { return btVector3(v.x(), v.y(), v.z()); }
+Vec3f vec(const btVector3& v) { return Vec3f(float(v.x()), float(v.y()), float(v.z())); }
+
+btTransform pose_transform(const Vec3f& centre, const Quatf& q) {
+  return btTransform(btQuaternion(q.x(), q.y(), q.z(), q.w()), bt(centre));
+}
+
+}  // namespace
+
+struct RigidBodies::World {
+  btDefaultCollisionConfiguration config;
+  btCollisionDispatcher dispatcher{&config};
+  btDbvtBroadphase broadphase;
+  btSequentialImpulseConstraintSolver solver;
+  btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
+  std::vector<std::unique_ptr<btCollisionShape>> shapes;
+  std::vector<std::unique_ptr<btRigidBody>> objects;  // every Bullet body, static ones included
+  std::vector<btRigidBody*> bodies;                   // the dynamic ones, in body order
+  struct Kinematic {
+    btRigidBody* object;
+    const Solid* solid;  // points into `solids`
+  };
+  std::vector<Kinematic> kinematic;
+  std::vector<Solid> solids;  // the scene's solids at their initial pose
+
+  ~World() {
+    for (auto& o : objects) world.removeRigidBody(o.get());
+  }
+
+  btCollisionShape* shape_of(const Solid& s, float margin) {
+    if (s.kind == Solid::Kind::Sphere) {
+      shapes.push_back(std::make_unique<btSphereShape>(s.radius));
+    } else {
+      auto box = std::make_unique<btBoxShape>(bt(Vec3f(0.5f * (s.max - s.min))));
+      const Vec3f half = 0.5f * (s.max - s.min);
+      box->setMargin(std::min(margin, 0.25f * half.minCoeff()));  // btBoxShape keeps its outer size
+      shapes.push_back(std::move(box));
+    }
+    return shapes.back().get();
+  }
+
+  btRigidBody* add(btCollisionShape* shape, const btTransform& where, double mass, float friction) {
+    btVector3 inertia(0, 0, 0);
+    if (mass > 0.0) shape->calculateLocalInertia(mass, inertia);
+    btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, shape, inertia);
+    info.m_startWorldTransform = where;
+    info.m_friction = friction;
+    info.m_restitution = 0.0;
+    info.m_linearDamping = 0.0;
+    info.m_angularDamping = 0.0;
+    objects.push_back(std::make_unique<btRigidBody>(info));
+    btRigidBody* o = objects.back().get();
+    world.addRigidBody(o);
+    return o;
+  }
+
+  // Five or six slabs as thick as the tank is large, outside its walls and overlapping at the edges.
+  void add_tank(const Solid& s, float margin) {
+    const Vec3f extent = s.max - s.min;
+    const float thick = extent.maxCoeff();
+    for (int a = 0; a < 3; ++a)
+      for (int side = 0; side < 2; ++side) {
+        if (side == 1 && s.open_top && a == s.up_axis) continue;
+        Vec3f half = 0.5f * extent + Vec3f::Constant(thick);
+        half[a] = 0.5f * thick;
+        Vec3f centre = 0.5f * (s.min + s.max);
+        centre[a] = side == 0 ? s.min[a] - 0.5f * thick : s.max[a] + 0.5f * thick;
+        Solid slab;
+        slab.kind = Solid::Kind::Box;
+        slab.min = centre - half;
+        slab.max = centre + half;
+        add(shape_of(slab, margin), pose_transform(centre, Quatf::Identity()), 0.0, 1.0f);
+      }
+  }
+};
+
+RigidBodies::RigidBodies() = default;
+RigidBodies::~RigidBodies() = default;
+RigidBodies::RigidBodies(RigidBodies&&) noexcept = default;
+RigidBodies& RigidBodies::operator=(RigidBodies&&) noexcept = default;
+
+RigidBodies::RigidBodies(const SolidSet& solids, const Vec3f& gravity, float margin) {
+  solids.validate();
+  body_of_solid_.assign(solids.solids().size(), -1);
+  if (!solids.any_dynamic()) return;
+  world_ = std::make_unique<World>();
+  World& w = *world_;
+  w.solids = solids.solids();
+  w.world.setGravity(bt(gravity));
+  for (size_t i = 0; i < w.solids.size(); ++i) {
+    const Solid& s = w.solids[i];
+    if (s.kind == Solid::Kind::Tank) {
+      w.add_tank(s, margin);
+      continue;
+    }
+    const btTransform where = pose_transform(s.centre(), s.orientation);
+    if (s.dynamics.enabled) {
+      const double mass = s.dynamics.mass > 0.0f ? double(s.dynamics.mass) : double(s.dynamics.density) * s.volume();
+      btRigidBody* body = w.add(w.shape_of(s, margin), where, mass, s.dynamics.friction);
+      body->setActivationState(DISABLE_DEACTIVATION);  // the fluid may push a body at rest at any time
+      body_of_solid_[i] = int(w.bodies.size());
+      w.bodies.push_back(body);
+      masses_.push_back(float(mass));
+      BodyPose pose;
+      pose.solid = uint32_t(i);
+      pose.position = s.centre();
+      pose.orientation = s.orientation;
+      poses_.push_back(pose);
+    } else {
+      btRigidBody* o = w.add(w.shape_of(s, margin), where, 0.0, 1.0f);
+      if (s.motion.moving()) {
+        o->setCollisionFlags(o->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+        o->setActivationState(DISABLE_DEACTIVATION);
+        o->setWorldTransform(pose_transform(s.centre() + s.motion.offset(0.0), s.orientation));
+        o->setInterpolationWorldTransform(o->getWorldTransform());
+        w.kinematic.push_back({o, &s});
+      }
+    }
+  }
+}
+
+void RigidBodies::step(double t, double dt, const std::vector<Vec3d>& force, const std::vector<Vec3d>& torque) {
+  if (empty() || !(dt > 0.0)) return;
+  World& w = *world_;
+  const int substeps = std::max(1, int(std::ceil(dt / kMaxSubstep - 1e-9)));
+  const double h = dt / substeps;
+  for (int k = 1; k <= substeps; ++k) {
+    const double t_end = k == substeps ? t + dt : t + k * h;
+    for (const World::Kinematic& m : w.kinematic)
+      m.object->setWorldTransform(pose_transform(m.solid->centre() + m.solid->motion.offset(t_end), m.solid->orientation));
+    for (size_t b = 0; b < w.bodies.size(); ++b) {
+      w.bodies[b]->applyCentralForce(bt(force[b]));
+      w.bodies[b]->applyTorque(bt(torque[b]));
+    }
+    w.world.stepSimulation(btScalar(h), 0);  // 0: exactly one step of h (forces are cleared after it)
+  }
+  for (size_t b = 0; b < w.bodies.size(); ++b) {
+    const btRigidBody& body = *w.bodies[b];
+    const btTransform& x = body.getWorldTransform();
+    const btQuaternion q = x.getRotation();
+    BodyPose& pose = poses_[b];
+    pose.position = vec(x.getOrigin());
+    pose.orientation = Quatf(float(q.w()), float(q.x()), float(q.y()), float(q.z())).normalized();
+    pose.velocity = vec(body.getLinearVelocity());
+    pose.angular_velocity = vec(body.getAngularVelocity());
+  }
+}
+
+}  // namespace spume::fluid

@@ -1,0 +1,53 @@
+#pragma once
+// The dynamic solids of a scene as rigid bodies, simulated by Bullet (btDiscreteDynamicsWorld, box
+// and sphere shapes): gravity, the forces and torques the fluid exerts (fluid/coupling.h), and
+// contacts with each other, the tank walls, static solids and kinematic solids (Bullet kinematic
+// bodies following their motion). Contacts have restitution 0 and Coulomb friction (a body's
+// `friction`; static and kinematic solids have 1, and Bullet multiplies the two coefficients).
+//
+// Bullet is only seen by rigid_bodies.cpp. It runs single-threaded and is deterministic for identical
+// inputs, so bodies move identically for any thread count of the fluid solver as long as the
+// forces are summed in a fixed order (coupling.h does).
+#include <memory>
+#include <vector>
+
+#include "core/vec.h"
+#include "scene/solids.h"
+
+namespace spume::fluid {
+
+class RigidBodies {
+ public:
+  RigidBodies();  // no bodies
+  // One body per dynamic solid of `solids`, in solid order, at its initial pose and at rest.
+  // `margin` (m): Bullet's collision margin for boxes (kept inside the box, so the contact surface
+  // stays the box's); use a fraction of the particle radius. Throws Error for invalid solids.
+  RigidBodies(const SolidSet& solids, const Vec3f& gravity, float margin);
+  ~RigidBodies();
+  RigidBodies(RigidBodies&&) noexcept;
+  RigidBodies& operator=(RigidBodies&&) noexcept;
+
+  bool empty() const { return poses_.empty(); }
+  size_t size() const { return poses_.size(); }
+  // Current pose of each body, in solid order (BodyPose::solid says which).
+  const std::vector<BodyPose>& poses() const { return poses_; }
+  // Body index of solid s, or -1 when s is not dynamic.
+  int body_of_solid(size_t s) const { return s < body_of_solid_.size() ? body_of_solid_[s] : -1; }
+  float mass(size_t body) const { return masses_[body]; }
+
+  // Advances the bodies from t to t + dt under gravity plus, per body, `force` (N, at the centre of
+  // mass) and `torque` (N m, about it), held constant over the step, which Bullet takes in substeps
+  // of at most kMaxSubstep. Kinematic solids move to their offset at each substep's end.
+  void step(double t, double dt, const std::vector<Vec3d>& force, const std::vector<Vec3d>& torque);
+
+  static constexpr double kMaxSubstep = 1.0 / 1000.0;  // s
+
+ private:
+  struct World;
+  std::unique_ptr<World> world_;
+  std::vector<BodyPose> poses_;
+  std::vector<int> body_of_solid_;
+  std::vector<float> masses_;
+};
+
+}  // namespace spume::fluid
