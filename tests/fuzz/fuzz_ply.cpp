@@ -1,0 +1,12 @@
+// libFuzzer target: PLY (io/ply.h), ascii and binary of both byte orders, through read_fluid_file and
+// `spume info`.
+#include "fuzz_file.h"
+#include "io/particle_file.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  using namespace spume;
+  return fuzz::read_as_file(data, size, ".ply", [](const std::filesystem::path& p) {
+    fuzz::expect_clean([&] { read_fluid_file(p); });
+    fuzz::expect_clean([&] { describe_particle_file(p); });
+  });
+}

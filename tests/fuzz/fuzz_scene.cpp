@@ -1,0 +1,28 @@
+// libFuzzer target: the simulation half of a scene file (scene/sim_scene.h) from JSON text, as the
+// command loads it (render/app/scene_file.cpp: JSON with comments -> ParamReader -> read_sim_scene ->
+// unknown-key check). Nothing is read from disk: the scene's folder does not exist.
+#include <cstdint>
+#include <string>
+
+#include "core/error.h"
+#include "core/params.h"
+#include "scene/sim_scene.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  using namespace spume;
+  Json json;
+  try {
+    json = Json::parse(std::string(reinterpret_cast<const char*>(data), size), nullptr, true,
+                       /*ignore_comments=*/true);
+  } catch (const Json::parse_error&) {
+    return 0;  // the command reports these with a line number
+  }
+  try {
+    const ParamReader root = ParamReader::from_json(std::move(json), "fuzz.json");
+    const SimScene scene = read_sim_scene(root, "/nonexistent/spume-fuzz", "fuzz");
+    root.reject_unknown_keys();
+    (void)scene;
+  } catch (const Error&) {
+  }
+  return 0;
+}

@@ -1,0 +1,137 @@
+// Diffuse particles where they should not be: far outside the domain (removed at the first step,
+// without overflow in the grid lookups), inside solids (pushed out, even from a sphere's exact
+// centre), and in the corners of a tank (they stay inside, on every wall at once).
+#include <gtest/gtest.h>
+
+#include "stability_support.h"
+
+namespace spume {
+namespace {
+
+const double kDt = 1.0 / 50;
+
+std::vector<FluidFrame> pool(const Vec3f& lo, const Vec3f& hi, int frames) {
+  return stability::translating_block(lo, hi, 0.02f, Vec3f::Zero(), kDt, frames);
+}
+
+std::vector<Vec3f> far_away() {
+  return {Vec3f(1e6f, 0, 0), Vec3f(-1e30f, 0.5f, 0.5f), Vec3f(0.5f, 3e38f, 0.5f), Vec3f(0.5f, 0.5f, -1e20f),
+          Vec3f(-3e38f, -3e38f, -3e38f)};
+}
+
+TEST(StabilityDomain, ParticlesFarOutsideAreRemovedAtTheFirstStep) {
+  for (DiffuseType type : {DiffuseType::Spray, DiffuseType::Foam, DiffuseType::Bubble}) {
+    DiffuseSetup setup = stability::setup_with(0.02f, {{"k_ta", 0}, {"k_wc", 0}});
+    setup.domain.min = Vec3f(-1, -1, -1), setup.domain.max = Vec3f(1, 1, 1);
+    DiffuseSimulator sim(setup);
+    sim.set_particles(stability::diffuse_at(far_away(), type, Vec3f(1, 2, 3)));
+    const auto fluid = pool(Vec3f(0, 0, 0), Vec3f(0.2f, 0.2f, 0.2f), 3);
+    FrameStats first{};
+    const FrameStats s0 = sim.process_frame(fluid[0], &fluid[1], [&](const DiffuseFrame& f, const FrameStats&) {
+      EXPECT_TRUE(stability::all_finite(f));
+      for (DiffuseType t : f.types) EXPECT_EQ(t, DiffuseType::Spray);  // no fluid out there
+    });
+    (void)s0;
+    first = sim.process_frame(fluid[1], &fluid[2], [](const DiffuseFrame& f, const FrameStats&) {
+      EXPECT_TRUE(stability::all_finite(f));
+    });
+    EXPECT_EQ(first.removed, far_away().size()) << to_string(type);
+    EXPECT_EQ(sim.particles().size(), 0u);
+  }
+}
+
+TEST(StabilityDomain, WithoutADomainFarParticlesStayFinite) {
+  DiffuseSetup setup = stability::setup_with(0.02f, {{"k_ta", 0}, {"k_wc", 0}});
+  DiffuseSimulator sim(setup);
+  sim.set_particles(stability::diffuse_at(far_away(), DiffuseType::Foam, Vec3f(1, 2, 3)));
+  const auto run = stability::run_checked(sim, pool(Vec3f(0, 0, 0), Vec3f(0.2f, 0.2f, 0.2f), 5));
+  EXPECT_EQ(run.removed, 0u);
+  EXPECT_EQ(sim.particles().size(), far_away().size());
+}
+
+TEST(StabilityDomain, ParticlesInsideSolidsArePushedOut) {
+  Solid tank;
+  tank.kind = Solid::Kind::Tank;
+  tank.min = Vec3f(0, 0, 0), tank.max = Vec3f(1, 1, 1);
+  Solid box;
+  box.kind = Solid::Kind::Box;
+  box.min = Vec3f(0.4f, 0, 0.4f), box.max = Vec3f(0.6f, 0.2f, 0.6f);
+  Solid ball;
+  ball.kind = Solid::Kind::Sphere;
+  ball.center = Vec3f(0.25f, 0.5f, 0.25f), ball.radius = 0.1f;
+  DiffuseSetup setup = stability::setup_with(0.02f);
+  setup.solids = SolidSet({tank, box, ball});
+  setup.domain.min = Vec3f(-0.5f, -0.5f, -0.5f), setup.domain.max = Vec3f(1.5f, 2, 1.5f);
+  // Inside the box, at the sphere's exact centre (no direction to leave by), under the floor,
+  // beyond a side wall, and inside the box right at a tank corner.
+  const std::vector<Vec3f> start = {Vec3f(0.5f, 0.1f, 0.5f), ball.center, Vec3f(0.5f, -0.3f, 0.5f),
+                                    Vec3f(1.3f, 0.5f, 0.5f), Vec3f(0.45f, 0.01f, 0.45f)};
+  for (DiffuseType type : {DiffuseType::Spray, DiffuseType::Foam, DiffuseType::Bubble}) {
+    DiffuseSimulator sim(setup);
+    sim.set_particles(stability::diffuse_at(start, type, Vec3f(0, -1, 0)));
+    // A shallow pool on the floor around the box, moving a little so it emits too.
+    auto fluid = stability::translating_block(Vec3f(0.02f, 0.02f, 0.02f), Vec3f(0.38f, 0.3f, 0.98f), 0.02f,
+                                              Vec3f(0.5f, 0, 0), kDt, 6);
+    const auto run = stability::run_checked(sim, fluid, true);
+    for (const DiffuseFrame& f : run.frames)
+      for (size_t i = 0; i < f.size(); ++i) {
+        if (f.index == 0 && i < start.size()) continue;  // the input itself
+        ASSERT_FALSE(setup.solids.inside(f.positions[i]))
+            << to_string(type) << " frame " << f.index << " particle " << i << " at " << f.positions[i].transpose();
+      }
+    EXPECT_EQ(run.removed, 0u) << to_string(type);
+  }
+}
+
+TEST(StabilityDomain, ParticlesInTheCornersOfATankStayInside) {
+  for (bool open_top : {true, false}) {
+    Solid tank;
+    tank.kind = Solid::Kind::Tank;
+    tank.min = Vec3f(0, 0, 0), tank.max = Vec3f(0.5f, 0.5f, 0.5f);
+    tank.open_top = open_top;
+    DiffuseSetup setup = stability::setup_with(0.02f);
+    setup.solids = SolidSet({tank});
+    setup.domain.min = Vec3f(-0.1f, -0.1f, -0.1f), setup.domain.max = Vec3f(0.6f, 1.5f, 0.6f);
+    // Each of the 8 corners exactly, and just beyond it, thrown outwards through the corner.
+    std::vector<Vec3f> start, velocity;
+    for (int c = 0; c < 8; ++c) {
+      const Vec3f corner((c & 1) ? 0.5f : 0.0f, (c & 2) ? 0.5f : 0.0f, (c & 4) ? 0.5f : 0.0f);
+      const Vec3f out = (corner - Vec3f::Constant(0.25f)).normalized();
+      start.push_back(corner), velocity.push_back(5.0f * out);
+      start.push_back(corner + 1e-3f * out), velocity.push_back(5.0f * out);
+    }
+    for (DiffuseType type : {DiffuseType::Spray, DiffuseType::Foam, DiffuseType::Bubble}) {
+      DiffuseSimulator sim(setup);
+      DiffuseFrame d = stability::diffuse_at(start, type);
+      d.velocities = velocity;
+      sim.set_particles(d);
+      // Fluid filling the bottom corners so classification sees fluid and walls together.
+      const auto fluid = pool(Vec3f(0.02f, 0.02f, 0.02f), Vec3f(0.48f, 0.1f, 0.48f), 10);
+      const auto run = stability::run_checked(sim, fluid, true);
+      for (const DiffuseFrame& f : run.frames) {
+        if (f.index == 0) continue;  // the input itself
+        for (size_t i = 0; i < f.size(); ++i) {
+          const Vec3f& p = f.positions[i];
+          SCOPED_TRACE(str(to_string(type), open_top ? " open" : " closed", " frame ", f.index, " particle ", i,
+                           " at ", p.transpose()));
+          ASSERT_FALSE(sim.setup().solids.inside(p));
+          ASSERT_GE(p.y(), 0.0f);
+          if (!open_top) {
+            ASSERT_LE(p.y(), 0.5f);
+          }
+          if (p.y() > 0.5f) continue;  // above an open tank's walls a particle may pass over them
+          ASSERT_GE(p.x(), 0.0f);
+          ASSERT_LE(p.x(), 0.5f);
+          ASSERT_GE(p.z(), 0.0f);
+          ASSERT_LE(p.z(), 0.5f);
+        }
+      }
+      if (!open_top) {
+        EXPECT_EQ(run.removed, 0u);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace spume
