@@ -6,6 +6,7 @@
 #include "commands.h"
 #include "core/error.h"
 #include "pipeline/simulate_scene.h"
+#include "movie.h"
 #include "render_stage.h"
 #include "scene_args.h"
 
@@ -16,6 +17,7 @@ std::vector<cli::OptionSpec> render_options() {
   std::vector<cli::OptionSpec> options = scene_command_options();
   options.push_back({"frames", true, false, "SPEC      render only these frames: 7, 0-99, 0-99:2, 1-3,5,10-20"});
   options.push_back({"overwrite", false, false, "          render frames that already exist on disk"});
+  options.push_back({"movie", false, false, "          also encode OUT/<scene>/<scene>.mp4 with ffmpeg (if installed)"});
   return options;
 }
 
@@ -32,10 +34,18 @@ void report(const char* what, bool ran, bool quiet) {
   if (!quiet) std::fprintf(stderr, "  %-22s %s\n", what, ran ? "ran" : "skipped");
 }
 
-void print_render_summary(const RenderStageSummary& s, bool quiet) {
-  if (quiet) return;
-  std::fprintf(stderr, "render: %d frames written, %d already on disk, %.1f s\n", s.written, s.skipped, s.seconds);
-  for (const auto& stage : s.stages) std::fprintf(stderr, "  ran: %s\n", stage.c_str());
+void finish_render(const RenderStageSummary& s, const cli::ParsedArgs& args, const SceneSetup& setup) {
+  if (!setup.quiet) {
+    std::fprintf(stderr, "render: %d frames written, %d already on disk, %.1f s\n", s.written, s.skipped, s.seconds);
+    for (const auto& stage : s.stages) std::fprintf(stderr, "  ran: %s\n", stage.c_str());
+  }
+  if (args.has("movie") && s.first_frame_number >= 0) {
+    const auto scene_out = setup.out_root / setup.sim.name;
+    const auto movie = scene_out / (setup.sim.name + ".mp4");
+    write_movie((scene_out / setup.render.frame_pattern).string(), s.first_frame_number, setup.sim.fluid.fps, movie,
+                setup.quiet);
+    if (!setup.quiet) std::printf("Saved: %s\n", movie.string().c_str());
+  }
 }
 
 }  // namespace
@@ -44,8 +54,8 @@ int command_render(const std::vector<std::string>& raw) {
   const auto options = render_options();
   const cli::ParsedArgs args = cli::parse(raw, options, "render");
   const SceneSetup setup = load_scene_setup(args, options, "render");
-  print_render_summary(run_render_stage(setup.sim, setup.render, setup.render_fingerprint, stage_options(args, setup)),
-                       setup.quiet);
+  finish_render(run_render_stage(setup.sim, setup.render, setup.render_fingerprint, stage_options(args, setup)), args,
+                setup);
   return 0;
 }
 
@@ -70,7 +80,7 @@ int command_run(const std::vector<std::string>& raw) {
   }
   const RenderStageSummary rendered =
       run_render_stage(setup.sim, setup.render, setup.render_fingerprint, stage_options(args, setup));
-  print_render_summary(rendered, setup.quiet);
+  finish_render(rendered, args, setup);
   return 0;
 }
 

@@ -138,7 +138,7 @@ RenderStageSummary run_render_stage(const SimScene& scene, RenderSettings settin
   for (size_t k = 0; k < frames.size(); ++k) {
     const int f = frames[k];
     const std::filesystem::path path = expand_frame_pattern(pattern, f);
-    if (summary.first_frame.empty()) summary.first_frame = path;
+    if (summary.first_frame.empty()) summary.first_frame = path, summary.first_frame_number = f;
     if (!options.overwrite && valid_frame_on_disk(path, settings)) {
       ++summary.skipped;
       progress.update(k + 1, "exists, skipped");

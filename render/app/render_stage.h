@@ -34,6 +34,7 @@ struct RenderStageSummary {
   double seconds = 0.0;
   std::vector<std::string> stages;  // what ran, e.g. "surface reconstruction", "OSMesa surface pass"
   std::filesystem::path first_frame;  // the first frame written or found
+  int first_frame_number = -1;
 };
 
 // A scene ready to render from its caches: the fluid source, the frames it has, and the settings
