@@ -18,16 +18,7 @@ LoadedScene load_scene_file(const std::filesystem::path& path, const std::vector
   if (!in) fail(path.string(), ": cannot open the scene file (", std::filesystem::exists(path) ? "unreadable" : "no such file", ")");
   std::stringstream text;
   text << in.rdbuf();
-  Json json;
-  try {
-    json = Json::parse(text.str(), nullptr, true, /*ignore_comments=*/true);
-  } catch (const Json::parse_error& e) {
-    // e.byte is the offset of the error; turn it into a line number for the message.
-    const std::string s = text.str();
-    const size_t upto = std::min<size_t>(e.byte, s.size());
-    const long line = 1 + std::count(s.begin(), s.begin() + long(upto), '\n');
-    fail(path.string(), ":", line, ": not valid JSON: ", e.what());
-  }
+  Json json = parse_json_text(text.str(), path.string());
   return scene_from_json(std::move(json), path.string(), path.parent_path(), path.stem().string(), overrides);
 }
 

@@ -218,6 +218,19 @@ void ParamReader::reject_unknown_keys() const {
   fail(message);
 }
 
+Json parse_json_text(const std::string& text, const std::string& source) {
+  try {
+    return Json::parse(text, nullptr, true, /*ignore_comments=*/true);
+  } catch (const Json::parse_error& e) {
+    // e.byte is the offset of the error; turn it into a line number for the message.
+    const size_t upto = std::min<size_t>(e.byte, text.size());
+    const long line = 1 + std::count(text.begin(), text.begin() + long(upto), '\n');
+    fail(source, ":", line, ": not valid JSON: ", e.what());
+  } catch (const Json::exception& e) {  // valid syntax the parser cannot hold, e.g. a number like 1e400
+    fail(source, ": JSON value out of range: ", e.what());
+  }
+}
+
 void apply_override(Json& root, const std::string& assignment) {
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0)
@@ -228,6 +241,8 @@ void apply_override(Json& root, const std::string& assignment) {
     value = Json::parse(text);
   } catch (const Json::parse_error&) {
     value = text;  // a bare word is a string
+  } catch (const Json::exception& e) {  // valid syntax the parser cannot hold, e.g. 1e400
+    fail("--set ", assignment, ": the value cannot be read (", e.what(), ")");
   }
   Json* node = &root;
   size_t start = 0;

@@ -78,6 +78,10 @@ class ParamReader {
 // it parses (numbers, booleans, arrays), else taken as a string. Intermediate objects are created.
 void apply_override(Json& root, const std::string& assignment);
 
+// Parses JSON text (comments allowed), throwing Error "source:line: not valid JSON: ..." for bad
+// syntax and "source: JSON value out of range" for what the parser cannot hold (numbers like 1e400).
+Json parse_json_text(const std::string& text, const std::string& source);
+
 // Levenshtein distance, for "did you mean" suggestions.
 size_t edit_distance(const std::string& a, const std::string& b);
 

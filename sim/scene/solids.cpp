@@ -1,6 +1,7 @@
 #include "solids.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -36,6 +37,31 @@ float oriented_box_distance(const Solid& s, const Vec3f& p, Vec3f& normal) {
   const float d = box_distance(local, s.min, s.max, n);
   normal = s.orientation * n;
   return d;
+}
+
+// Above an open tank's rim a point passes over the side walls (axes other than up).
+bool above_open_walls(const Solid& tank, const Vec3f& p, int axis) {
+  return tank.open_top && axis != tank.up_axis && p[tank.up_axis] > tank.max[tank.up_axis];
+}
+
+// p lies inside the solid (for a tank: beyond its walls), with no tolerance.
+bool contains(const Solid& s, const Vec3f& p) {
+  switch (s.kind) {
+    case Solid::Kind::Tank:
+      for (int a = 0; a < 3; ++a) {
+        if (above_open_walls(s, p, a)) continue;
+        if (p[a] < s.min[a]) return true;
+        if (!(s.open_top && a == s.up_axis) && p[a] > s.max[a]) return true;
+      }
+      return false;
+    case Solid::Kind::Box: {
+      Vec3f n;
+      return oriented_box_distance(s, p, n) < 0.0f;
+    }
+    case Solid::Kind::Sphere:
+      return (p - s.center).squaredNorm() < s.radius * s.radius;
+  }
+  return false;
 }
 
 }  // namespace
@@ -191,8 +217,13 @@ SolidSet SolidSet::at_time(double t) const {
 }
 
 bool SolidSet::inside(const Vec3f& p) const {
-  Vec3f q = p, v = Vec3f::Zero();
-  return push_out(q, v, 0.0f);
+  return std::any_of(solids_.begin(), solids_.end(), [&](const Solid& s) { return contains(s, p); });
+}
+
+bool SolidSet::inside_other_than(const Vec3f& p, const Solid& skip) const {
+  for (const Solid& s : solids_)
+    if (&s != &skip && contains(s, p)) return true;
+  return false;
 }
 
 float SolidSet::solid_volume_within(const Vec3f& p, float h) const {
@@ -201,7 +232,7 @@ float SolidSet::solid_volume_within(const Vec3f& p, float h) const {
     switch (s.kind) {
       case Solid::Kind::Tank:
         for (int a = 0; a < 3; ++a) {
-          if (a != s.up_axis && p[s.up_axis] > s.max[s.up_axis]) continue;  // above the side walls
+          if (above_open_walls(s, p, a)) continue;
           volume += sphere_cap_volume(p[a] - s.min[a], h);
           if (!(s.open_top && a == s.up_axis)) volume += sphere_cap_volume(s.max[a] - p[a], h);
         }
@@ -228,38 +259,81 @@ bool SolidSet::push_out(Vec3f& p, Vec3f& v, float skin) const {
     if (vn < 0.0f) v -= vn * normal;
     moved = true;
   };
-  for (const Solid& s : solids_) {
-    solid = &s;
-    switch (s.kind) {
-      case Solid::Kind::Tank:
-        for (int a = 0; a < 3; ++a) {
-          if (a != s.up_axis && p[s.up_axis] > s.max[s.up_axis]) continue;  // passing over a side wall
-          Vec3f n = Vec3f::Zero();
-          if (p[a] < s.min[a]) {
-            n[a] = 1.0f;
-            push(n, s.min[a] - p[a]);
+  // Solids may touch (a box on a tank floor), so leaving one can land in another: a box is left by
+  // the shallowest face that opens into free space, and a few passes settle what is left.
+  constexpr int kPasses = 3;
+  for (int pass = 0; pass < kPasses; ++pass) {
+    const bool moved_before = moved;
+    moved = false;
+    for (const Solid& s : solids_) {
+      solid = &s;
+      switch (s.kind) {
+        case Solid::Kind::Tank: {
+          const Vec3f start = p;  // the walls are judged at the point as it arrived
+          for (int a = 0; a < 3; ++a) {
+            if (above_open_walls(s, start, a)) continue;
+            Vec3f n = Vec3f::Zero();
+            if (p[a] < s.min[a]) {
+              n[a] = 1.0f;
+              push(n, s.min[a] - p[a]);
+            }
+            if (!(s.open_top && a == s.up_axis) && p[a] > s.max[a]) {
+              n[a] = -1.0f;
+              push(n, p[a] - s.max[a]);
+            }
           }
-          if (!(s.open_top && a == s.up_axis) && p[a] > s.max[a]) {
-            n[a] = -1.0f;
-            push(n, p[a] - s.max[a]);
-          }
+          break;
         }
-        break;
-      case Solid::Kind::Box: {
-        Vec3f n;
-        const float d = oriented_box_distance(s, p, n);
-        if (d < 0.0f) push(n, -d);
-        break;
-      }
-      case Solid::Kind::Sphere: {
-        const Vec3f r = p - s.center;
-        const float len = r.norm();
-        if (len < s.radius) push(len > 0.0f ? Vec3f(r / len) : Vec3f::UnitY(), s.radius - len);
-        break;
+        case Solid::Kind::Box: {
+          Vec3f normal;
+          float depth;
+          if (box_exit(s, p, skin, normal, depth)) push(normal, depth);
+          break;
+        }
+        case Solid::Kind::Sphere: {
+          const Vec3f r = p - s.center;
+          const float len = r.norm();
+          if (len < s.radius) push(len > 0.0f ? Vec3f(r / len) : Vec3f::UnitY(), s.radius - len);
+          break;
+        }
       }
     }
+    const bool moved_now = moved;
+    moved = moved_before || moved_now;
+    if (!moved_now) break;
   }
   return moved;
+}
+
+bool SolidSet::box_exit(const Solid& s, const Vec3f& p, float skin, Vec3f& normal, float& depth) const {
+  const Vec3f c = s.centre(), half = 0.5f * (s.max - s.min);
+  const Vec3f local = s.rotated() ? Vec3f(s.orientation.conjugate() * (p - c)) : Vec3f(p - c);
+  if (!((local.cwiseAbs() - half).array() < 0.0f).all()) return false;
+  // The six faces, shallowest first; ties keep the axis order, so the choice is deterministic.
+  struct Face {
+    float depth;
+    int axis;
+    float sign;
+  };
+  std::array<Face, 6> faces;
+  for (int a = 0; a < 3; ++a) {
+    faces[size_t(2 * a)] = {half[a] - local[a], a, 1.0f};
+    faces[size_t(2 * a + 1)] = {half[a] + local[a], a, -1.0f};
+  }
+  std::stable_sort(faces.begin(), faces.end(), [](const Face& x, const Face& y) { return x.depth < y.depth; });
+  for (size_t k = 0; k < faces.size(); ++k) {
+    Vec3f n = Vec3f::Zero();
+    n[faces[k].axis] = faces[k].sign;
+    if (s.rotated()) n = s.orientation * n;
+    const Vec3f exit = p + (faces[k].depth + skin) * n;
+    // The last face is taken anyway: a box buried in other solids still lets go of the point.
+    if (k + 1 == faces.size() || !inside_other_than(exit, s)) {
+      normal = n;
+      depth = faces[k].depth;
+      return true;
+    }
+  }
+  return false;
 }
 
 }  // namespace spume

@@ -120,13 +120,19 @@ class SolidSet {
   // Moves p into free space if it is inside a solid, onto the surface plus `skin`, and removes the
   // velocity component pointing into the solid (relative to the solid's velocity at p, see
   // Solid::velocity_at; zero for static solids). Returns true if p was moved. Uses the geometry as
-  // stored; a rotated box pushes along its own face normals.
+  // stored; a rotated box pushes along its own face normals. Where solids touch, a box is left by
+  // its shallowest face that opens into free space, and up to three passes settle the point.
   bool push_out(Vec3f& p, Vec3f& v, float skin) const;
 
   // True when p is inside a solid (or outside a tank's walls): push_out would move it.
   bool inside(const Vec3f& p) const;
 
  private:
+  bool inside_other_than(const Vec3f& p, const Solid& skip) const;
+  // If p is inside box s: the face to leave by (outward normal, depth of p below it), the shallowest
+  // one whose exit point (plus skin) is not inside another solid.
+  bool box_exit(const Solid& s, const Vec3f& p, float skin, Vec3f& normal, float& depth) const;
+
   std::vector<Solid> solids_;
 };
 

@@ -10,14 +10,8 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace spume;
-  Json json;
   try {
-    json = Json::parse(std::string(reinterpret_cast<const char*>(data), size), nullptr, true,
-                       /*ignore_comments=*/true);
-  } catch (const Json::parse_error&) {
-    return 0;  // the command reports these with a line number
-  }
-  try {
+    Json json = parse_json_text(std::string(reinterpret_cast<const char*>(data), size), "fuzz.json");
     const ParamReader root = ParamReader::from_json(std::move(json), "fuzz.json");
     const SimScene scene = read_sim_scene(root, "/nonexistent/spume-fuzz", "fuzz");
     root.reject_unknown_keys();
