@@ -10,6 +10,7 @@
 #include "image/png_io.h"
 #include "io/frame_pattern.h"
 #include "io/spume_cache.h"
+#include "pipeline/body_track_file.h"
 #include "pipeline/cache_state.h"
 #include "pipeline/frame_renderer.h"
 #include "pipeline/simulate_run.h"
@@ -68,6 +69,7 @@ PreparedRender prepare_render(const SimScene& scene, RenderSettings settings, co
          "with other fluid keys); run `spume simulate` or `spume run` first");
   p.source = scene_fluid_source(scene, out_root);
   p.frames = diffuse_frames_to_run(scene, *p.source, SimulateOptions{});
+  if (settings.draw_solids) p.bodies = scene_body_track(scene, p.scene_out);
 
   const FluidFrame first = p.source->load(p.frames.front());
   if (settings.camera.empty())
@@ -104,7 +106,7 @@ LoadedFrame load_frame(PreparedRender& p, int f) {
     }
     if (p.settings.draw_solids) {
       Camera camera = camera_at(p.settings.camera, frame.time, p.settings.width, p.settings.height);
-      frame.solids = solid_meshes(p.scene->solids.at_time(frame.time), camera.position);
+      frame.solids = solid_meshes(solids_at_time(p.scene->solids, p.bodies, frame.time), camera.position);
     }
     return frame;
   });

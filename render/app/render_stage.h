@@ -15,6 +15,7 @@
 
 #include "pipeline/frame_renderer.h"
 #include "pipeline/render_settings.h"
+#include "scene/body_track.h"
 #include "scene/fluid_source.h"
 #include "scene/sim_scene.h"
 
@@ -46,6 +47,7 @@ struct PreparedRender {
   std::filesystem::path scene_out;  // OUT/<scene>
   std::unique_ptr<FluidSource> source;
   std::vector<int> frames;          // available, sorted
+  BodyTrack bodies;                 // the dynamic solids' poses (scenes with dynamic solids)
 };
 PreparedRender prepare_render(const SimScene& scene, RenderSettings settings, const std::filesystem::path& out_root);
 

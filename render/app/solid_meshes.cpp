@@ -29,6 +29,13 @@ TriangleMesh cutaway_tank(const Solid& tank, const Vec3f& eye) {
   return mesh;
 }
 
+// A rotated box's min/max are its extent in its own frame about its centre.
+void rotate_about(TriangleMesh& mesh, const Quatf& orientation, const Vec3f& centre) {
+  const Eigen::Matrix3f rotation = orientation.toRotationMatrix();
+  for (Vec3f& v : mesh.vertices) v = centre + rotation * (v - centre);
+  for (Vec3f& n : mesh.normals) n = rotation * n;
+}
+
 }  // namespace
 
 std::vector<SolidMesh> solid_meshes(const SolidSet& solids, const Vec3f& eye) {
@@ -42,6 +49,7 @@ std::vector<SolidMesh> solid_meshes(const SolidSet& solids, const Vec3f& eye) {
         break;
       case Solid::Kind::Box:
         m.mesh = make_box_mesh(s.min, s.max);
+        if (s.rotated()) rotate_about(m.mesh, s.orientation, s.centre());
         m.albedo = Vec3f(0.72f, 0.45f, 0.25f);
         break;
       case Solid::Kind::Sphere:

@@ -35,7 +35,7 @@ DiffuseSimulator::DiffuseSimulator(DiffuseSetup setup) : setup_(std::move(setup)
 
 const SolidSet& DiffuseSimulator::solids_at(double t, SolidSet& slot) const {
   if (!setup_.solids.any_moving()) return setup_.solids;
-  slot = setup_.solids.at_time(t);
+  slot = solids_at_time(setup_.solids, setup_.bodies, t);
   return slot;
 }
 

@@ -13,7 +13,7 @@
 #include "diffuse/params.h"
 #include "diffuse/potentials.h"
 #include "grid/neighbour_grid.h"
-#include "scene/solids.h"
+#include "scene/body_track.h"
 
 namespace spume {
 
@@ -37,6 +37,7 @@ struct DiffuseSetup {
   DiffuseParams params;
   FluidSequenceInfo fluid;
   SolidSet solids;
+  BodyTrack bodies;  // poses of the dynamic solids (empty: they stay at their initial pose)
   Aabb domain;  // diffuse particles outside are deleted; empty box = no limit
 };
 

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "body_track_file.h"
 #include "cache_state.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -52,6 +53,8 @@ FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions
 
   std::vector<std::filesystem::path> paths;
   for (int f = 0; f <= last; ++f) paths.push_back(fluid_cache_path(out, f));
+  const bool has_bodies = scene.solids.any_dynamic();
+  if (has_bodies) paths.push_back(body_track_path(out));
   if (!options.force && cache_is_current(dir, scene.fluid_fingerprint, paths)) {
     summary.reused = true;
     return summary;
@@ -67,11 +70,14 @@ FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions
       "frame,time,steps,mean_dt,density_error_pct,max_density_error_pct,density_iterations,divergence_iterations,"
       "corrections,seconds\n";
   SolverStats before = solver.stats();
+  BodyTrack bodies;
+  bodies.fps = scene.fluid.fps;
   for (int f = 0; f <= last; ++f) {
     const auto t0 = std::chrono::steady_clock::now();
     solver.advance_to(double(f) / scene.fluid.fps);
     const FluidFrame frame = solver.frame(f);
     write_fluid_cache(paths[size_t(f)], frame, scene.fluid.particle_radius);
+    if (has_bodies) bodies.frames.push_back(solver.body_poses());
     if (scene.write_fluid_bgeo) write_bgeo(out / "fluid_bgeo" / numbered("fluid", f, ".bgeo"), frame);
     const SolverStats now = solver.stats();
     stats += stats_row(f, frame.time, now, before,
@@ -80,6 +86,7 @@ FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions
                                        100.0 * now.density_error, "%"));
     before = now;
   }
+  if (has_bodies) write_body_track(body_track_path(out), bodies);
   write_file_atomically(dir / "solver_stats.csv", [&](std::ostream& o) { o << stats; });
   mark_cache_complete(dir, scene.fluid_fingerprint);
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -3,6 +3,7 @@
 // one cache per frame at the scene's frame rate.
 //   OUT/<scene>/fluid/fluid_0000.spf       positions, velocities, ids (io/spume_cache.h)
 //   OUT/<scene>/fluid/solver_stats.csv     steps, time step, density error, iterations per frame
+//   OUT/<scene>/fluid/bodies.csv           the dynamic solids' poses per frame (body_track_file.h)
 //   OUT/<scene>/fluid_bgeo/fluid_0000.bgeo the same as BGEO, when output.fluid_bgeo is set
 // Current caches (cache_state.h) are reused and the solver does not run. The solver cannot resume
 // mid-sequence (its state between frames is not only the particles), so a stale or incomplete

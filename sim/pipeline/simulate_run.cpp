@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <fstream>
 
+#include "body_track_file.h"
 #include "cache_state.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -83,6 +84,7 @@ SimulateSummary run_simulation(const SimScene& scene, FluidSource& source, const
   setup.params = scene.diffuse;
   setup.fluid = scene.fluid;
   setup.solids = scene.solids;
+  setup.bodies = scene_body_track(scene, summary.out_dir);
   setup.domain = scene.domain.empty() ? default_domain(scene, current) : scene.domain;
   DiffuseSimulator simulator(setup);
 
