@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 
 #include "core/error.h"
@@ -137,6 +138,7 @@ RenderStageSummary run_render_stage(const SimScene& scene, RenderSettings settin
   FrameRenderer renderer(settings);
   Progress progress("render " + scene.name, frames.size(), options.quiet);
   bool any_reconstructed = false, any_gl = false, any_volume = false;
+  FrameReport total;  // stage seconds summed over the written frames
   for (size_t k = 0; k < frames.size(); ++k) {
     const int f = frames[k];
     const std::filesystem::path path = expand_frame_pattern(pattern, f);
@@ -154,17 +156,24 @@ RenderStageSummary run_render_stage(const SimScene& scene, RenderSettings settin
       any_reconstructed |= report.reconstructed;
       any_gl |= report.used_gl;
       any_volume |= report.volume;
+      total.reconstruct_seconds += report.reconstruct_seconds;
+      total.surface_seconds += report.surface_seconds;
+      total.volume_seconds += report.volume_seconds;
       ++summary.written;
       if (!options.quiet) std::printf("Saved: %s\n", path.string().c_str()), std::fflush(stdout);
       progress.update(k + 1, str(report.triangles, " triangles, ", report.spheres, " diffuse spheres"));
     });
   }
-  if (any_reconstructed) summary.stages.push_back("surface reconstruction");
-  if (any_gl) summary.stages.push_back("OSMesa surface pass");
+  const auto per_frame = [&](double seconds) {
+    return str(" (", int(std::lround(1e3 * seconds / std::max(summary.written, 1))), " ms per frame)");
+  };
+  if (any_reconstructed) summary.stages.push_back("surface reconstruction" + per_frame(total.reconstruct_seconds));
+  if (any_gl) summary.stages.push_back("OSMesa surface pass" + per_frame(total.surface_seconds));
   if (!any_gl && summary.written > 0) summary.stages.push_back("CPU sky and ground (nothing showed a surface)");
   if (any_volume)
-    summary.stages.push_back(settings.volume.integrator == VolumeIntegrator::Exact ? "volume pass (exact)"
-                                                                                   : "volume pass (march)");
+    summary.stages.push_back((settings.volume.integrator == VolumeIntegrator::Exact ? "volume pass (exact)"
+                                                                                    : "volume pass (march)") +
+                             per_frame(total.volume_seconds));
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   progress.finish(str(summary.written, " written, ", summary.skipped, " skipped -> ", frames_dir.string()));
   return summary;
