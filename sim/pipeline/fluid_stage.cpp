@@ -41,6 +41,21 @@ std::string fluid_cache_pattern(const std::filesystem::path& scene_out) {
   return (scene_out / "fluid" / "fluid_%04d.spf").string();
 }
 
+namespace {
+
+std::vector<std::filesystem::path> fluid_cache_paths(const std::filesystem::path& scene_out, int last) {
+  std::vector<std::filesystem::path> paths;
+  for (int f = 0; f <= last; ++f) paths.push_back(fluid_cache_path(scene_out, f));
+  return paths;
+}
+
+}  // namespace
+
+bool fluid_caches_current(const SimScene& scene, const std::filesystem::path& out_root) {
+  const std::filesystem::path out = out_root / scene.name;
+  return cache_is_current(out / "fluid", scene.fluid_fingerprint, fluid_cache_paths(out, scene.frames->second));
+}
+
 FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions& options) {
   if (scene.source != FluidSourceKind::Solver) fail(scene.name, ": the fluid stage needs fluid.source \"solver\"");
   const auto start = std::chrono::steady_clock::now();
@@ -50,8 +65,7 @@ FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions
   FluidStageSummary summary;
   summary.frames = last + 1;
 
-  std::vector<std::filesystem::path> paths;
-  for (int f = 0; f <= last; ++f) paths.push_back(fluid_cache_path(out, f));
+  const std::vector<std::filesystem::path> paths = fluid_cache_paths(out, last);
   if (!options.force && cache_is_current(dir, scene.fluid_fingerprint, paths)) {
     summary.reused = true;
     return summary;
