@@ -149,8 +149,8 @@ RenderStageSummary run_render_stage(const SimScene& scene, RenderSettings settin
       progress.update(k + 1, "exists, skipped");
       continue;
     }
+    const LoadedFrame frame = load_frame(prepared, f);  // its errors name the frame
     with_context(str("frame ", f), [&] {
-      const LoadedFrame frame = load_frame(prepared, f);
       FrameReport report;
       const ImageRGB8 image = renderer.render(frame.inputs(), &report);
       write_png(path, image);

@@ -109,8 +109,10 @@ std::string shell_quote(std::string_view text) {
   return quoted + "'";
 }
 
-SlurmScripts make_slurm_scripts(const SlurmFarm& farm) {
-  check_values(farm);
+SlurmScripts make_slurm_scripts(const SlurmFarm& farm_in) {
+  check_values(farm_in);
+  SlurmFarm farm = farm_in;  // the scene name also goes into comments: keep it on one line
+  std::replace_if(farm.scene_name.begin(), farm.scene_name.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
   SlurmScripts scripts;
   if (!farm.simulate_command.empty()) scripts.simulate = simulate_script(farm);
   scripts.render = render_script(farm);
