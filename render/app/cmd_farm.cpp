@@ -136,12 +136,13 @@ int farm_slurm(const std::vector<std::string>& raw) {
   write_script(farm.farm_dir / "render.sbatch", scripts.render);
   const fs::path submit = farm.farm_dir / "submit.sh";
   write_script(submit, scripts.submit);
-  std::fprintf(stderr, "farm %s: %d frames in %zu chunks; %s\n", setup.sim.name.c_str(), p.frames, p.chunks.size(),
-               simulated ? "the simulation caches are current: no simulation job"
-                         : "a simulation job runs first, the render array after it (afterok)");
+  if (!setup.quiet)
+    std::fprintf(stderr, "farm %s: %d frames in %zu chunks; %s\n", setup.sim.name.c_str(), p.frames,
+                 p.chunks.size(), simulated ? "the simulation caches are current: no simulation job"
+                                            : "a simulation job runs first, the render array after it (afterok)");
   std::fflush(stdout);
   if (!args.has("submit")) {
-    std::fprintf(stderr, "submit with: bash %s\n", farm::shell_quote(submit.string()).c_str());
+    if (!setup.quiet) std::fprintf(stderr, "submit with: bash %s\n", farm::shell_quote(submit.string()).c_str());
     return 0;
   }
   if (!on_path("sbatch"))

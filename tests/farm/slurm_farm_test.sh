@@ -4,7 +4,8 @@
 #   1. the simulation job and the render array (chunks of 1 frame, after it) render a tiny scene;
 #      every frame must be byte-identical to a local `spume run`;
 #   2. after cancelling a resubmitted array part way, submitting again renders only the missing
-#      frames (counted by the `Saved:` lines of the array's logs) and the result is identical again.
+#      frames (counted by the `Saved:` lines of the array's logs) and the result is identical again;
+#   3. when the simulation job fails, the array is cancelled without running.
 # Exits 77 (ctest: skipped) when Slurm or munge is not installed.
 # Usage: slurm_farm_test.sh SPUME_BINARY SCENE.json
 set -euo pipefail
@@ -159,4 +160,16 @@ rendered=$(saved_lines "$array")
   fail "the resumed array rendered $rendered frames; $((frames - after_cancel)) were missing"
 compare_frames
 echo "resume: rendered only the $rendered missing frames; all $frames byte-identical to the local render"
+
+# 3. A failing simulation job: the array never runs (afterok), and is cancelled rather than left pending.
+"$spume" farm slurm "$scene" --out "$work/failing" --chunk 4 --quiet >/dev/null
+sed -i 's/^exec .*/exit 3/' "$work/failing"/*/farm/simulate.sbatch
+bash "$work/failing"/*/farm/submit.sh >"$work/submit4.txt"
+simulation=$(submitted_id simulation "$work/submit4.txt")
+array=$(submitted_id "render array" "$work/submit4.txt")
+wait_for_jobs "$simulation" "$array"
+[ "$(job_state "$simulation")" = "FAILED " ] || fail "failing simulation job: $(job_state "$simulation")"
+[ "$(job_state "$array")" = "CANCELLED " ] || fail "array after a failed simulation: $(job_state "$array")"
+[ -z "$(ls "$work/failing"/*/frames/*.png 2>/dev/null)" ] || fail "frames were rendered after a failed simulation"
+echo "failed simulation: the render array was cancelled without running"
 echo "PASS"

@@ -124,7 +124,7 @@ TEST(SlurmScripts, SubmitScriptPassesQuotedPathsToSbatch) {
   EXPECT_TRUE(contains(out, "<--chdir=/tmp/work dir>\n")) << out;
   EXPECT_TRUE(contains(out, "<--output=/tmp/spume farm's test/logs/simulate_%j.log>\n")) << out;
   EXPECT_TRUE(contains(out, "</tmp/spume farm's test/simulate.sbatch>\n")) << out;
-  EXPECT_TRUE(contains(out, "<--dependency=afterok:42>\n")) << out;
+  EXPECT_TRUE(contains(out, "<--dependency=afterok:42>\n<--kill-on-invalid-dep=yes>\n")) << out;
   EXPECT_TRUE(contains(out, "<--output=/tmp/spume farm's test/logs/render_%A_%a.log>\n")) << out;
   EXPECT_TRUE(contains(out, "Submitted simulation job 42\n")) << out;
   EXPECT_TRUE(contains(out, "Submitted render array job 42 (3 tasks, after job 42)\n")) << out;

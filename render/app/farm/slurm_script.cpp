@@ -91,7 +91,8 @@ std::string submit_script(const SlurmFarm& farm) {
     text += "simulation=$(" + sbatch + " --output=\"$farm/logs/simulate_%j.log\" \"$farm/simulate.sbatch\")\n"
             "simulation=${simulation%%;*}  # --parsable prints JOBID or JOBID;CLUSTER\n"
             "echo \"Submitted simulation job $simulation\"\n";
-    dependency = " --dependency=afterok:$simulation";
+    // If the simulation fails, the array is cancelled instead of pending forever.
+    dependency = " --dependency=afterok:$simulation --kill-on-invalid-dep=yes";
   }
   text += "render=$(" + sbatch + dependency +
           " --output=\"$farm/logs/render_%A_%a.log\" \"$farm/render.sbatch\")\n"
