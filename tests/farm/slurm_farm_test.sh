@@ -12,13 +12,13 @@ set -euo pipefail
 
 spume=$1
 scene=$2
+export PATH=$PATH:/usr/sbin  # the daemons live in sbin, often missing from a user's PATH
 for program in munged slurmctld slurmd sbatch squeue scancel scontrol; do
   if ! command -v "$program" >/dev/null; then
     echo "SKIP: $program not found; install Debian's slurm-wlm and munge (listed in .ci/packages)"
     exit 77
   fi
 done
-export PATH=$PATH:/usr/sbin
 
 work=$(mktemp -d /tmp/spume_slurm_test.XXXXXX)
 pids=()
