@@ -37,7 +37,8 @@ std::vector<cli::OptionSpec> farm_options(bool slurm) {
   if (slurm) {
     options.push_back({"partition", true, false, "P         Slurm partition of both jobs (default: the cluster's)"});
     options.push_back({"max-running", true, false, "N         at most N array tasks at once (--array=...%N)"});
-    options.push_back({"sbatch", true, true, "OPTION    one more #SBATCH line for both jobs, e.g. --sbatch=--time=2:00:00"});
+    options.push_back(
+        {"sbatch", true, true, "OPTION    one more #SBATCH line for both jobs, e.g. --sbatch=--time=2:00:00"});
     options.push_back({"submit", false, false, "          submit the jobs now (bash OUT/<scene>/farm/submit.sh)"});
   }
   return options;
@@ -149,7 +150,8 @@ int farm_slurm(const std::vector<std::string>& raw) {
     fail("--submit: sbatch is not on PATH (is Slurm installed here?); the scripts are written, submit them with "
          "`bash ", submit.string(), "` on a machine of the cluster");
   const int status = std::system(("bash " + farm::shell_quote(submit.string())).c_str());
-  if (status != 0) fail("--submit: ", submit.string(), " failed (exit status ", WEXITSTATUS(status), "); see sbatch's message above");
+  if (status != 0)
+    fail("--submit: ", submit.string(), " failed (exit status ", WEXITSTATUS(status), "); see sbatch's message above");
   return 0;
 }
 

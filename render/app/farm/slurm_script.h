@@ -3,7 +3,8 @@
 //   simulate.sbatch  one job: `spume simulate` (left out when the caches are current)
 //   render.sbatch    an array job: task i runs `spume render --frames CHUNK_i`
 //   submit.sh        submits both, the array with --dependency=afterok on the simulation job
-//                    (cancelled if that fails), and prints the job ids. Running it again resumes (frames on disk are skipped).
+//                    (cancelled if that fails), and prints the job ids. Running it again
+//                    resumes (frames on disk are skipped).
 // Paths and arguments are single-quoted for the shell; values that go into #SBATCH lines (which
 // sbatch reads without a shell) are checked instead.
 #include <filesystem>
