@@ -2,8 +2,10 @@
 
 #include <charconv>
 #include <cmath>
+#include <limits>
 
 #include "core/error.h"
+#include "core/frame_spec.h"
 #include "core/params.h"
 
 namespace spume::cli {
@@ -84,15 +86,13 @@ double parse_double(const std::string& text, const std::string& option) {
 }
 
 std::pair<int, int> parse_frame_range(const std::string& text, const std::string& option) {
-  const auto dash = text.find('-', 1);
-  if (dash == std::string::npos) {
-    const int f = parse_int(text, option, 0, 1 << 30);
-    return {f, f};
-  }
-  const int a = parse_int(text.substr(0, dash), option, 0, 1 << 30);
-  const int b = parse_int(text.substr(dash + 1), option, 0, 1 << 30);
-  if (b < a) fail(option, ": range \"", text, "\" ends before it starts");
-  return {a, b};
+  // The frame-spec grammar everywhere, but only specs that select one unbroken run of frames.
+  const std::vector<int> frames = parse_frame_spec(text, 0, std::numeric_limits<int>::max(), option.c_str());
+  for (size_t k = 1; k < frames.size(); ++k)
+    if (frames[k] != frames[k - 1] + 1)
+      fail(option, ": \"", text, "\" is not one unbroken range (frame ", frames[k - 1], " is followed by ", frames[k],
+           "); the simulation steps through time from its first frame, so it takes N or A-B");
+  return {frames.front(), frames.back()};
 }
 
 }  // namespace spume::cli

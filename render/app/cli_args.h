@@ -27,7 +27,8 @@ ParsedArgs parse(const std::vector<std::string>& args, const std::vector<OptionS
 
 std::string usage_lines(const std::vector<OptionSpec>& specs);
 
-// "12-40" or "7" -> inclusive range; errors name the option.
+// A frame spec (core/frame_spec.h) that selects one unbroken run, e.g. "7", "12-40" or "0-3,4-9" ->
+// inclusive range; steps and gaps are errors naming the option. For the sequential simulation.
 std::pair<int, int> parse_frame_range(const std::string& text, const std::string& option);
 int parse_int(const std::string& text, const std::string& option, int lo, int hi);
 double parse_double(const std::string& text, const std::string& option);

@@ -11,7 +11,7 @@ namespace spume {
 
 int command_simulate(const std::vector<std::string>& raw) {
   std::vector<cli::OptionSpec> options = scene_command_options();
-  options.push_back({"frames", true, false, "A-B       simulate only frames A to B (diffuse material starts empty at A)"});
+  options.push_back({"frames", true, false, "A-B       simulate only frames A to B, clamped to the scene's (diffuse material starts empty at A)"});
   options.push_back({"bgeo", false, false, "          also write the diffuse frames as BGEO (Houdini, Blender)"});
   options.push_back({"force", false, false, "          simulate even when the caches are current"});
   const cli::ParsedArgs args = cli::parse(raw, options, "simulate");

@@ -9,6 +9,7 @@ int command_simulate(const std::vector<std::string>& args);
 int command_render(const std::vector<std::string>& args);
 int command_run(const std::vector<std::string>& args);
 int command_lookdev(const std::vector<std::string>& args);
+int command_farm(const std::vector<std::string>& args);
 int command_info(const std::vector<std::string>& args);
 
 }  // namespace spume

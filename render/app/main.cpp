@@ -17,6 +17,7 @@ constexpr const char* kUsage =
     "  simulate SCENE    fluid frames -> diffuse caches (spray, foam, bubbles); solver scenes: fluid first\n"
     "  render SCENE      caches -> PNG frames (never simulates)\n"
     "  lookdev SCENE     one frame for every combination of render keys, as a labelled contact sheet\n"
+    "  farm chunks|slurm SCENE  frame chunks for GNU parallel, or a Slurm array job (simulation first)\n"
     "  info FILE...      what a particle file or cache holds\n"
     "run 'spume COMMAND' without arguments for its options.\n";
 
@@ -32,6 +33,7 @@ int main(int argc, char** argv) {
                              {"simulate", spume::command_simulate},
                              {"render", spume::command_render},
                              {"lookdev", spume::command_lookdev},
+                             {"farm", spume::command_farm},
                              {"info", spume::command_info}};
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
     std::fputs(kUsage, argc < 2 ? stderr : stdout);

@@ -57,6 +57,15 @@ void remove_pattern_frames(const std::string& pattern) {
 
 }  // namespace
 
+std::filesystem::path reset_stale_frames(const std::string& pattern, const std::string& render_fingerprint) {
+  const std::filesystem::path frames_dir = std::filesystem::path(expand_frame_pattern(pattern, 0)).parent_path();
+  if (!cache_is_current(frames_dir, render_fingerprint, {})) {
+    if (std::filesystem::is_directory(frames_dir)) remove_pattern_frames(pattern);
+    mark_cache_complete(frames_dir, render_fingerprint);
+  }
+  return frames_dir;
+}
+
 PreparedRender prepare_render(const SimScene& scene, RenderSettings settings, const std::filesystem::path& out_root) {
   const Vec3f up = -scene.gravity.normalized();
   if (!(up.dot(Vec3f::UnitY()) > 0.999f))
@@ -129,11 +138,7 @@ RenderStageSummary run_render_stage(const SimScene& scene, RenderSettings settin
   RenderStageSummary summary;
   if (frames.empty()) return summary;
 
-  const std::filesystem::path frames_dir = std::filesystem::path(expand_frame_pattern(pattern, 0)).parent_path();
-  if (!cache_is_current(frames_dir, render_fingerprint, {})) {
-    if (std::filesystem::is_directory(frames_dir)) remove_pattern_frames(pattern);
-    mark_cache_complete(frames_dir, render_fingerprint);
-  }
+  const std::filesystem::path frames_dir = reset_stale_frames(pattern, render_fingerprint);
 
   FrameRenderer renderer(settings);
   Progress progress("render " + scene.name, frames.size(), options.quiet);
@@ -148,8 +153,8 @@ RenderStageSummary run_render_stage(const SimScene& scene, RenderSettings settin
       progress.update(k + 1, "exists, skipped");
       continue;
     }
+    const LoadedFrame frame = load_frame(prepared, f);  // its errors name the frame
     with_context(str("frame ", f), [&] {
-      const LoadedFrame frame = load_frame(prepared, f);
       FrameReport report;
       const ImageRGB8 image = renderer.render(frame.inputs(), &report);
       write_png(path, image);

@@ -64,6 +64,11 @@ struct LoadedFrame {
 };
 LoadedFrame load_frame(PreparedRender& prepared, int frame);
 
+// The resume rule above on its own: when the frames folder of `pattern` records another fingerprint,
+// its frames are deleted and the new fingerprint recorded. Returns the folder. Farms call it once
+// before their tasks start, so no task deletes a frame another task has just written.
+std::filesystem::path reset_stale_frames(const std::string& pattern, const std::string& render_fingerprint);
+
 RenderStageSummary run_render_stage(const SimScene& scene, RenderSettings settings,
                                     const std::string& render_fingerprint, const RenderStageOptions& options);
 

@@ -7,7 +7,8 @@
 
 namespace spume {
 
-// Calls write(stream) on a temporary file next to `path`, flushes, then renames it over `path`.
+// Calls write(stream) on a temporary file next to `path` (`path.tmp.<host>.<pid>`, so processes on
+// several hosts sharing a folder never collide), flushes, then renames it over `path`.
 // Throws Error naming the path if anything fails; the temporary file is removed on failure.
 void write_file_atomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write);
 

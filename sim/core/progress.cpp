@@ -17,7 +17,7 @@ std::string format_duration(double seconds) {
 
 Progress::Progress(std::string label, size_t total, bool quiet)
     : label_(std::move(label)), total_(total), quiet_(quiet), terminal_(::isatty(2) == 1),
-      start_(std::chrono::steady_clock::now()), last_print_(start_ - std::chrono::hours(1)) {}
+      start_(std::chrono::steady_clock::now()) {}
 
 Progress::~Progress() {
   if (open_line_) std::fputc('\n', stderr);
@@ -26,9 +26,8 @@ Progress::~Progress() {
 void Progress::update(size_t done, const std::string& note) {
   if (quiet_) return;
   const auto now = std::chrono::steady_clock::now();
-  // Off a terminal, print at most every 2 s (and always the last item) to keep logs short.
-  if (!terminal_ && done < total_ && now - last_print_ < std::chrono::seconds(2)) return;
-  last_print_ = now;
+  // Not throttled: off a terminal (farm logs, pipes) every frame gets its own line, so a log says
+  // which frame a job reached.
   const double elapsed = std::chrono::duration<double>(now - start_).count();
   const double rate = elapsed > 0 ? double(done) / elapsed : 0.0;
   std::string line = str(label_, ": frame ", done, "/", total_);

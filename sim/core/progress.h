@@ -1,7 +1,8 @@
 #pragma once
 // Progress of a long run on stderr: "simulate: frame 12/240  3.1 frames/s  eta 1m13s". On a terminal
-// one line is rewritten in place; otherwise (farms, logs) each update is its own line, so other
-// programs can parse it. Quiet reporters print nothing.
+// one line is rewritten in place; otherwise (farms, logs) each update (one per frame) is its own line
+// "LABEL: frame DONE/TOTAL  R frames/s  eta T  NOTE", so other programs can parse it. Quiet
+// reporters print nothing.
 #include <chrono>
 #include <string>
 
@@ -20,7 +21,7 @@ class Progress {
   std::string label_;
   size_t total_;
   bool quiet_, terminal_, open_line_ = false;
-  std::chrono::steady_clock::time_point start_, last_print_;
+  std::chrono::steady_clock::time_point start_;
 };
 
 std::string format_duration(double seconds);  // "1h02m", "3m05s", "12.4s"

@@ -42,6 +42,23 @@ std::string fluid_cache_pattern(const std::filesystem::path& scene_out) {
   return (scene_out / "fluid" / "fluid_%04d.spf").string();
 }
 
+namespace {
+
+// Every file the stage writes per frame, and the body track of a scene with dynamic solids.
+std::vector<std::filesystem::path> fluid_cache_paths(const SimScene& scene, const std::filesystem::path& scene_out) {
+  std::vector<std::filesystem::path> paths;
+  for (int f = 0; f <= scene.frames->second; ++f) paths.push_back(fluid_cache_path(scene_out, f));
+  if (scene.solids.any_dynamic()) paths.push_back(body_track_path(scene_out));
+  return paths;
+}
+
+}  // namespace
+
+bool fluid_caches_current(const SimScene& scene, const std::filesystem::path& out_root) {
+  const std::filesystem::path out = out_root / scene.name;
+  return cache_is_current(out / "fluid", scene.fluid_fingerprint, fluid_cache_paths(scene, out));
+}
+
 FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions& options) {
   if (scene.source != FluidSourceKind::Solver) fail(scene.name, ": the fluid stage needs fluid.source \"solver\"");
   const auto start = std::chrono::steady_clock::now();
@@ -51,10 +68,8 @@ FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions
   FluidStageSummary summary;
   summary.frames = last + 1;
 
-  std::vector<std::filesystem::path> paths;
-  for (int f = 0; f <= last; ++f) paths.push_back(fluid_cache_path(out, f));
+  const std::vector<std::filesystem::path> paths = fluid_cache_paths(scene, out);
   const bool has_bodies = scene.solids.any_dynamic();
-  if (has_bodies) paths.push_back(body_track_path(out));
   if (!options.force && cache_is_current(dir, scene.fluid_fingerprint, paths)) {
     summary.reused = true;
     return summary;

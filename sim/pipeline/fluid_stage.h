@@ -32,6 +32,9 @@ std::filesystem::path fluid_cache_path(const std::filesystem::path& scene_out, i
 // The pattern the diffuse stage and the renderer read the solver's frames with.
 std::string fluid_cache_pattern(const std::filesystem::path& scene_out);
 
+// The solver's caches of a solver scene are on disk and made from its current fluid keys.
+bool fluid_caches_current(const SimScene& scene, const std::filesystem::path& out_root);
+
 // Requires scene.source == Solver.
 FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions& options);
 

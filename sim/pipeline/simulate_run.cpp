@@ -61,15 +61,37 @@ std::filesystem::path diffuse_cache_path(const std::filesystem::path& scene_out,
   return scene_out / "diffuse" / frame_name("diffuse", frame, ".spd");
 }
 
+namespace {
+
+// The diffuse material starts empty at the first frame, so the caches depend on it too.
+std::string diffuse_fingerprint(const SimScene& scene, const std::vector<int>& frames) {
+  return scene.diffuse_fingerprint + str("\nfirst frame ", frames[0]);
+}
+
+std::vector<std::filesystem::path> diffuse_cache_paths(const std::filesystem::path& scene_out,
+                                                       const std::vector<int>& frames) {
+  std::vector<std::filesystem::path> paths;
+  for (int f : frames) paths.push_back(diffuse_cache_path(scene_out, f));
+  return paths;
+}
+
+}  // namespace
+
+bool diffuse_caches_current(const SimScene& scene, const FluidSource& source, const SimulateOptions& options) {
+  const std::vector<int> frames = diffuse_frames_to_run(scene, source, options);
+  const std::filesystem::path scene_out = options.out_root / scene.name;
+  return cache_is_current(scene_out / "diffuse", diffuse_fingerprint(scene, frames),
+                          diffuse_cache_paths(scene_out, frames));
+}
+
 SimulateSummary run_simulation(const SimScene& scene, FluidSource& source, const SimulateOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const std::vector<int> frames = diffuse_frames_to_run(scene, source, options);
   SimulateSummary summary;
   summary.out_dir = options.out_root / scene.name;
   const std::filesystem::path cache_dir = summary.out_dir / "diffuse";
-  const std::string fingerprint = scene.diffuse_fingerprint + str("\nfirst frame ", frames[0]);
-  std::vector<std::filesystem::path> paths;
-  for (int f : frames) paths.push_back(diffuse_cache_path(summary.out_dir, f));
+  const std::string fingerprint = diffuse_fingerprint(scene, frames);
+  const std::vector<std::filesystem::path> paths = diffuse_cache_paths(summary.out_dir, frames);
   if (!options.force && cache_is_current(cache_dir, fingerprint, paths)) {
     summary.reused = true;
     summary.frames = int(frames.size());

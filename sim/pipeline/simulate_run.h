@@ -36,6 +36,9 @@ std::filesystem::path diffuse_cache_path(const std::filesystem::path& scene_out,
 std::vector<int> diffuse_frames_to_run(const SimScene& scene, const FluidSource& source,
                                        const SimulateOptions& options);
 
+// The caches run_simulation would make are on disk and made from the scene's current diffuse keys.
+bool diffuse_caches_current(const SimScene& scene, const FluidSource& source, const SimulateOptions& options);
+
 SimulateSummary run_simulation(const SimScene& scene, FluidSource& source, const SimulateOptions& options);
 
 }  // namespace spume

@@ -8,6 +8,21 @@ std::unique_ptr<FluidSource> scene_fluid_source(const SimScene& scene, const std
   return make_file_source(scene.file_pattern, scene.fluid.fps);
 }
 
+std::vector<int> scene_frames(const SimScene& scene) {
+  if (scene.source == FluidSourceKind::Solver) {
+    std::vector<int> frames;
+    for (int f = scene.frames->first; f <= scene.frames->second; ++f) frames.push_back(f);
+    return frames;
+  }
+  return diffuse_frames_to_run(scene, *make_file_source(scene.file_pattern, scene.fluid.fps), SimulateOptions{});
+}
+
+bool scene_simulation_is_current(const SimScene& scene, const SimulateOptions& options) {
+  if (scene.source == FluidSourceKind::Solver && !fluid_caches_current(scene, options.out_root)) return false;
+  const auto source = scene_fluid_source(scene, options.out_root);
+  return diffuse_caches_current(scene, *source, options);
+}
+
 SceneSimulation simulate_scene(const SimScene& scene, const SimulateOptions& options, bool diffuse) {
   SceneSimulation result;
   if (scene.source == FluidSourceKind::Solver) {

@@ -17,6 +17,14 @@ struct SceneSimulation {
 // Where the scene's fluid frames are read from: its files, or the solver's caches under out_root.
 std::unique_ptr<FluidSource> scene_fluid_source(const SimScene& scene, const std::filesystem::path& out_root);
 
+// The frames the diffuse stage and the renderer cover, known before any cache exists (a solver
+// scene's range, or the fluid files found within the scene's range), so farms can plan chunks.
+std::vector<int> scene_frames(const SimScene& scene);
+
+// Both stages' caches are current for `options.out_root` and `options.frames`: simulate_scene would
+// run nothing. Reads only fingerprints and directory listings.
+bool scene_simulation_is_current(const SimScene& scene, const SimulateOptions& options);
+
 // `diffuse`: false leaves the diffuse stage out (a scene that draws no diffuse material).
 SceneSimulation simulate_scene(const SimScene& scene, const SimulateOptions& options, bool diffuse = true);
 

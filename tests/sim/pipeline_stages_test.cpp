@@ -113,6 +113,30 @@ TEST_F(PipelineStages, CurrentCachesAreReusedAndChangesRunTheStagesAgain) {
   EXPECT_EQ(again.diffuse.frames, 5);
 }
 
+// What farms ask before submitting a simulation job: would simulate_scene run anything?
+TEST_F(PipelineStages, SimulationIsCurrentExactlyWhenSimulateSceneWouldRunNothing) {
+  Json json = tiny_solver_scene();
+  EXPECT_EQ(scene_frames(scene_of(json)), (std::vector<int>{0, 1, 2, 3}));  // known before any cache
+  EXPECT_FALSE(scene_simulation_is_current(scene_of(json), options));       // nothing on disk
+  simulate_scene(scene_of(json), options);
+  EXPECT_TRUE(scene_simulation_is_current(scene_of(json), options));
+
+  Json render_only = json;  // render keys are not the simulation's business
+  render_only["render"] = {{"spp", 4}};
+  const ParamReader root = ParamReader::from_json(render_only, "tiny.json");
+  EXPECT_TRUE(scene_simulation_is_current(read_sim_scene(root, ".", "tiny"), options));
+
+  json["diffuse"] = {{"k_ta", 50}};
+  EXPECT_FALSE(scene_simulation_is_current(scene_of(json), options));  // a diffuse key changed
+  simulate_scene(scene_of(json), options);
+  EXPECT_TRUE(scene_simulation_is_current(scene_of(json), options));
+  fs::remove(out / "tiny/fluid/fluid_0001.spf");
+  EXPECT_FALSE(scene_simulation_is_current(scene_of(json), options));  // a fluid frame is missing
+  simulate_scene(scene_of(json), options);
+  fs::remove(out / "tiny/diffuse/diffuse_0003.spd");
+  EXPECT_FALSE(scene_simulation_is_current(scene_of(json), options));  // a diffuse frame is missing
+}
+
 TEST(CacheState, FingerprintMustMatchAndEveryFrameExist) {
   const fs::path dir = fs::temp_directory_path() / ("spume_cache_state_" + std::to_string(::getpid()));
   fs::remove_all(dir);

@@ -1,0 +1,194 @@
+// The farm side of the spume command on a tiny solver scene (tests/data/farm_tiny.json): chunks
+// rendered by separate processes are byte-identical to one render, renders resume, a failed frame
+// is named, progress is one line per frame in logs, and `farm slurm` writes its scripts (a
+// simulation job only when the caches are stale). The real cluster: slurm_farm_test.sh.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int status = -1;
+  std::string out, err;
+};
+
+// Runs spume with stdout and stderr captured separately (both are pipes, not terminals).
+Result run_spume(const std::string& arguments, const std::string& environment = "") {
+  static int counter = 0;
+  const fs::path err_file =
+      fs::temp_directory_path() / ("spume_farm_err_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+  const std::string command =
+      environment + " " + SPUME_BINARY + " " + arguments + " 2>'" + err_file.string() + "'";
+  Result r;
+  FILE* pipe = popen(command.c_str(), "r");
+  std::array<char, 4096> buffer;
+  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) r.out.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(err_file);
+  r.err.assign(std::istreambuf_iterator<char>(in), {});
+  fs::remove(err_file);
+  return r;
+}
+
+int count_lines_starting(const std::string& text, const std::string& prefix) {
+  std::istringstream in(text);
+  int n = 0;
+  for (std::string line; std::getline(in, line);) n += line.rfind(prefix, 0) == 0;
+  return n;
+}
+
+std::string read_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+const std::string kScene = std::string(SPUME_TEST_DATA_DIR) + "/farm_tiny.json";
+constexpr int kFrames = 8;
+
+// One simulation for the suite; each test renders to its own frames folder (render.frames).
+class FarmCommand : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    root = fs::temp_directory_path() / ("spume_farm_cmd_" + std::to_string(::getpid()));
+    fs::remove_all(root);
+    const Result r = run_spume("simulate " + kScene + " --quiet --out " + (root / "out").string());
+    ASSERT_EQ(r.status, 0) << r.err;
+  }
+  static void TearDownTestSuite() { fs::remove_all(root); }
+
+  std::string name() const { return ::testing::UnitTest::GetInstance()->current_test_info()->name(); }
+  // Scene, output root and this test's frames folder.
+  std::string args() const {
+    return kScene + " --out " + (root / "out").string() + " --set render.frames=" + name() + "/%04d.png";
+  }
+  fs::path frames_dir() const { return root / "out/farm_tiny" / name(); }
+  fs::path frame(int f) const {
+    char file[16];
+    std::snprintf(file, sizeof file, "%04d.png", f);
+    return frames_dir() / file;
+  }
+
+  static fs::path root;
+};
+fs::path FarmCommand::root;
+
+TEST_F(FarmCommand, ChunksPrintOneFrameSpecPerLine) {
+  Result r = run_spume("farm chunks " + args() + " --chunk 3");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out, "0-2\n3-5\n6-7\n");
+  r = run_spume("farm chunks " + args() + " --chunk 1 --frames 5-99:2");  // clamped to the scene's 0-7
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out, "5\n7\n");
+  r = run_spume("farm chunks " + args());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("--chunk N"), std::string::npos) << r.err;
+}
+
+TEST_F(FarmCommand, ChunksRenderedByOtherProcessesAreByteIdenticalToOneRender) {
+  const Result whole = run_spume("render " + args());
+  ASSERT_EQ(whole.status, 0) << whole.err;
+  EXPECT_EQ(count_lines_starting(whole.out, "Saved: "), kFrames) << whole.out;
+  std::vector<std::string> reference;
+  for (int f = 0; f < kFrames; ++f) reference.push_back(read_bytes(frame(f)));
+  fs::remove_all(frames_dir());
+
+  const Result chunks = run_spume("farm chunks " + args() + " --chunk 3");
+  ASSERT_EQ(chunks.status, 0) << chunks.err;
+  std::istringstream specs(chunks.out);
+  int saved = 0;
+  for (std::string spec; std::getline(specs, spec);) {
+    const Result part = run_spume("render " + args() + " --frames " + spec);
+    ASSERT_EQ(part.status, 0) << part.err;
+    saved += count_lines_starting(part.out, "Saved: ");
+  }
+  EXPECT_EQ(saved, kFrames);
+  for (int f = 0; f < kFrames; ++f) EXPECT_EQ(read_bytes(frame(f)), reference[size_t(f)]) << "frame " << f;
+}
+
+TEST_F(FarmCommand, RenderResumesWithOnlyMissingOrBrokenFrames) {
+  ASSERT_EQ(run_spume("render " + args()).status, 0);
+  fs::remove(frame(2));
+  fs::remove(frame(6));
+  std::ofstream(frame(4), std::ios::trunc) << "half a png";  // e.g. a copy cut short
+  Result r = run_spume("render " + args());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out, "Saved: " + frame(2).string() + "\nSaved: " + frame(4).string() + "\nSaved: " +
+                       frame(6).string() + "\n");
+  EXPECT_EQ(count_lines_starting(r.out, "Saved: "), 3);
+  r = run_spume("render " + args() + " --overwrite --frames 1-3");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(count_lines_starting(r.out, "Saved: "), 3);
+  for (const auto& entry : fs::directory_iterator(frames_dir()))
+    EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();
+}
+
+TEST_F(FarmCommand, ProgressIsOneParseableLinePerFrameInLogs) {
+  const Result r = run_spume("render " + args());
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (int k = 1; k <= kFrames; ++k) {
+    const std::string line = "render farm_tiny: frame " + std::to_string(k) + "/" + std::to_string(kFrames) + "  ";
+    EXPECT_EQ(count_lines_starting(r.err, line), 1) << line << "\n" << r.err;
+  }
+  EXPECT_EQ(count_lines_starting(r.err, "render farm_tiny: frame "), kFrames) << r.err;
+  EXPECT_NE(r.err.find(" eta "), std::string::npos) << r.err;
+}
+
+TEST_F(FarmCommand, FailedFrameExitsNonZeroAndNamesTheFrame) {
+  const fs::path out = root / name();
+  fs::create_directories(out);
+  fs::copy(root / "out", out, fs::copy_options::recursive);
+  fs::remove(out / "farm_tiny/diffuse/diffuse_0005.spd");
+  const Result r = run_spume("render " + kScene + " --out " + out.string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("error: frame 5: "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("diffuse_0005.spd"), std::string::npos) << r.err;
+  EXPECT_EQ(count_lines_starting(r.out, "Saved: "), 5) << r.out;  // frames 0-4 are kept for the resume
+}
+
+TEST_F(FarmCommand, SlurmScriptsHaveASimulationJobOnlyWhenTheCachesAreStale) {
+  const fs::path fresh = root / name();
+  Result r = run_spume("farm slurm " + kScene + " --out " + fresh.string() + " --chunk 2 --partition fx");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const fs::path farm = fresh / "farm_tiny/farm";
+  EXPECT_EQ(r.out, "Saved: " + (farm / "simulate.sbatch").string() + "\nSaved: " + (farm / "render.sbatch").string() +
+                       "\nSaved: " + (farm / "submit.sh").string() + "\n");
+  const std::string render = read_bytes(farm / "render.sbatch");
+  EXPECT_NE(render.find("#SBATCH --array=0-3\n"), std::string::npos) << render;
+  EXPECT_NE(render.find("#SBATCH --partition=fx\n"), std::string::npos) << render;
+  EXPECT_NE(render.find("'render' '" + kScene + "' '--out' '" + fresh.string() + "'"), std::string::npos) << render;
+  EXPECT_NE(read_bytes(farm / "submit.sh").find("--dependency=afterok:"), std::string::npos);
+
+  r = run_spume("farm slurm " + args() + " --chunk 2");  // the suite's caches are current
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_FALSE(fs::exists(root / "out/farm_tiny/farm/simulate.sbatch"));
+  EXPECT_NE(r.err.find("no simulation job"), std::string::npos) << r.err;
+  EXPECT_EQ(read_bytes(root / "out/farm_tiny/farm/submit.sh").find("dependency"), std::string::npos);
+}
+
+TEST_F(FarmCommand, SubmitWithoutSbatchIsAClearError) {
+  const Result r = run_spume("farm slurm " + args() + " --chunk 2 --submit", "PATH=/nonexistent");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("sbatch is not on PATH"), std::string::npos) << r.err;
+}
+
+TEST_F(FarmCommand, SimulateFramesMustBeOneUnbrokenRange) {
+  Result r = run_spume("simulate " + args() + " --frames 0-6:2");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("--frames: \"0-6:2\" is not one unbroken range"), std::string::npos) << r.err;
+  r = run_spume("simulate " + args() + " --frames 0-x");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("accepted forms"), std::string::npos) << r.err;
+}
+
+}  // namespace
