@@ -13,6 +13,8 @@
 #include <string>
 #include <unistd.h>
 
+#include "../sim/run_command.h"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -29,12 +31,10 @@ Result run_spume(const std::string& arguments, const std::string& environment = 
       fs::temp_directory_path() / ("spume_farm_err_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
   const std::string command =
       environment + " " + SPUME_BINARY + " " + arguments + " 2>'" + err_file.string() + "'";
+  const spume::CommandResult run = spume::run_command(command);
   Result r;
-  FILE* pipe = popen(command.c_str(), "r");
-  std::array<char, 4096> buffer;
-  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) r.out.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.status = run.status;
+  r.out = run.output;
   std::ifstream in(err_file);
   r.err.assign(std::istreambuf_iterator<char>(in), {});
   fs::remove(err_file);

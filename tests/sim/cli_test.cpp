@@ -9,6 +9,7 @@
 
 #include "io/bgeo.h"
 #include "io/spume_cache.h"
+#include "run_command.h"
 #include "test_fluids.h"
 
 namespace spume {
@@ -16,20 +17,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
+using Result = CommandResult;  // output: stdout and stderr
 
 Result run_spume(const std::string& arguments) {
-  const std::string command = std::string(SPUME_BINARY) + " " + arguments + " 2>&1";
-  Result r;
-  FILE* pipe = popen(command.c_str(), "r");
-  std::array<char, 4096> buffer;
-  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) r.output.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return run_command(std::string(SPUME_BINARY) + " " + arguments + " 2>&1");
 }
 
 class SpumeCommand : public ::testing::Test {

@@ -11,6 +11,7 @@
 
 #include "bad_files.h"
 #include "io/bgeo.h"
+#include "../sim/run_command.h"
 #include "../sim/test_fluids.h"
 
 namespace spume {
@@ -18,20 +19,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
+using Result = CommandResult;  // output: stdout and stderr
 
 Result run_spume(const std::string& arguments) {
-  const std::string command = std::string(SPUME_BINARY) + " " + arguments + " 2>&1";
-  Result r;
-  FILE* pipe = popen(command.c_str(), "r");
-  std::array<char, 4096> buffer;
-  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) r.output.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return run_command(std::string(SPUME_BINARY) + " " + arguments + " 2>&1");
 }
 
 class StabilityCommand : public ::testing::Test {
