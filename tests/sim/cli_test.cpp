@@ -72,6 +72,21 @@ TEST_F(SpumeCommand, PostProcessesBgeoFilesWithNoSceneFile) {
   EXPECT_EQ(run_spume("info " + (dir / "out/ParticleData_Fluid/diffuse/diffuse_0003.spd").string()).status, 0);
 }
 
+// Every scene shipped in scenes/ reads and validates (fluid, solids, diffuse and render keys): render
+// gets past the scene and stops only because nothing has been simulated into the empty folder.
+TEST_F(SpumeCommand, EveryShippedSceneReadsAndValidates) {
+  const fs::path scenes = fs::path(SPUME_TEST_DATA_DIR).parent_path().parent_path() / "scenes";
+  int count = 0;
+  for (const auto& entry : fs::directory_iterator(scenes)) {
+    if (entry.path().extension() != ".json") continue;
+    ++count;
+    const Result r = run_spume("render " + entry.path().string() + " --out " + (dir / "out").string());
+    EXPECT_EQ(r.status, 1) << entry.path() << ": " << r.output;
+    EXPECT_NE(r.output.find("no current fluid caches"), std::string::npos) << entry.path() << ": " << r.output;
+  }
+  EXPECT_GE(count, 5);
+}
+
 TEST_F(SpumeCommand, UnknownSceneKeySuggestsTheClosest) {
   write_scene(R"({"fluid": {"files": "cache/ParticleData_Fluid_%d.bgeo", "radius": 0.02},
                   "diffuse": {"tau_taa": [1, 2]}})");
