@@ -18,6 +18,7 @@ constexpr const char* kUsage =
     "  render SCENE      caches -> PNG frames (never simulates)\n"
     "  lookdev SCENE     one frame for every combination of render keys, as a labelled contact sheet\n"
     "  info FILE...      what a particle file or cache holds\n"
+    "  report [SCENE]    error against run time of each method, and the stability table -> OUT/report/\n"
     "run 'spume COMMAND' without arguments for its options.\n";
 
 struct Command {
@@ -32,7 +33,8 @@ int main(int argc, char** argv) {
                              {"simulate", spume::command_simulate},
                              {"render", spume::command_render},
                              {"lookdev", spume::command_lookdev},
-                             {"info", spume::command_info}};
+                             {"info", spume::command_info},
+                             {"report", spume::command_report}};
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
     std::fputs(kUsage, argc < 2 ? stderr : stdout);
     return argc < 2 ? 2 : 0;
