@@ -22,6 +22,8 @@ struct StudyEntry {
 // Report order (the numbering); run order is the same, the cheap ones first within it
 // would not change the outputs.
 constexpr StudyEntry kStudies[] = {{"render", report::study_render},
+                                   {"diffuse", report::study_diffuse},
+                                   {"fluid", report::study_fluid},
                                    {"surface", report::study_surface},
                                    {"stability", report::study_stability}};
 

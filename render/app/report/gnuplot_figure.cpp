@@ -1,5 +1,6 @@
 #include "gnuplot_figure.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -41,7 +42,7 @@ std::string gnuplot_script(const Figure& figure, const std::filesystem::path& pn
   s << "set terminal pngcairo noenhanced size " << columns * figure.panel_width << ',' << rows * figure.panel_height
     << " font 'sans,10'\n";
   s << "set output " << quoted(png.string()) << "\n";
-  s << "set datafile missing 'nan'\nset grid\nset key below box\nset bmargin 6\n";
+  s << "set datafile missing 'nan'\nset grid\n";
   // Data first: one datablock per series.
   for (size_t p = 0; p < figure.panels.size(); ++p) {
     const Panel& panel = figure.panels[p];
@@ -55,7 +56,13 @@ std::string gnuplot_script(const Figure& figure, const std::filesystem::path& pn
   s << "set multiplot layout " << rows << ',' << columns << "\n";
   for (size_t p = 0; p < figure.panels.size(); ++p) {
     const Panel& panel = figure.panels[p];
-    s << "unset logscale\nset autoscale\n";
+    // Room below the plot for the key (two entries a row) under the x label.
+    size_t longest = 0;
+    for (const Series& series : panel.series) longest = std::max(longest, series.title.size());
+    const size_t key_columns = longest > 30 ? 1 : 2;
+    const size_t key_rows = (panel.series.size() + key_columns - 1) / key_columns;
+    s << "unset logscale\nset autoscale\nset offsets 0, 0, graph 0.05, graph 0.05\nset bmargin " << 5 + key_rows
+      << "\nset key below box maxcols " << key_columns << "\n";
     s << "set title " << quoted(panel.title) << "\nset xlabel " << quoted(panel.xlabel) << "\nset ylabel "
       << quoted(panel.ylabel) << "\n";
     if (panel.log_x) s << "set logscale x " << panel.log_x_base << "\n";

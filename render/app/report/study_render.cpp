@@ -125,6 +125,7 @@ StudyResult study_render(const StudyContext& c) {
     s_rgbrms.points.push_back({f, e.rgb_rms}), s_rgbmax.points.push_back({f, e.rgb_max});
     s_ms.points.push_back({f, ms}), s_exact.points.push_back({f, exact_ms}), s_cost.points.push_back({ms, e.l_rms});
   }
+  std::sort(s_cost.points.begin(), s_cost.points.end());
   const PowerFit fit_l = fit_power_law(dx, l_rms);
   const PowerFit fit_lmax = fit_power_law(dx, l_max);
   const PowerFit fit_rgb = fit_power_law(dx, rgb_rms);

@@ -42,7 +42,8 @@ StudyResult study_stability(const StudyContext& c) {
       std::filesystem::temp_directory_path() / str("spume_report_stability_", getpid(), ".json");
   c.progress(str("stability: running ", binary.string()));
   const ProcessResult run =
-      run_process({binary.string(), "--gtest_filter=-*Full*", "--gtest_output=json:" + json.string()});
+      run_process({binary.string(), c.quick ? "--gtest_filter=-*Full*" : "--gtest_filter=*",
+                   "--gtest_output=json:" + json.string()});
   if (!run.started) fail(binary.string(), ": could not be run: ", run.start_error);
   Json doc;
   try {
