@@ -1,6 +1,7 @@
 #include "convergence_fit.h"
 
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "core/error.h"
@@ -28,6 +29,14 @@ PowerFit fit_power_law(std::span<const double> step, std::span<const double> err
   f.r_squared = syy > 0 ? sxy * sxy / (sxx * syy) : 1.0;
   f.points = int(x.size());
   return f;
+}
+
+std::string order_name(double order) {
+  if (std::abs(order - 1.0) <= 0.2) return "first order";
+  if (std::abs(order - 2.0) <= 0.2) return "second order";
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "order %.3g", order);
+  return buffer;
 }
 
 }  // namespace spume::report

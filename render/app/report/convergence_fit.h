@@ -3,6 +3,7 @@
 // error ~ C step^order. Points with a non-positive or non-finite error or step are left out (an error
 // of exactly 0 is the reference itself, not a measurement).
 #include <span>
+#include <string>
 
 namespace spume::report {
 
@@ -15,5 +16,8 @@ struct PowerFit {
 
 // Throws Error when fewer than two usable points with distinct steps remain.
 PowerFit fit_power_law(std::span<const double> step, std::span<const double> error);
+
+// "first order" / "second order" when the fitted order is within 0.2 of 1 or 2, else "order 1.43".
+std::string order_name(double order);
 
 }  // namespace spume::report

@@ -75,9 +75,13 @@ std::string gnuplot_script(const Figure& figure, const std::filesystem::path& pn
       bool has_point = false;
       for (const auto& [x, y] : panel.series[k].points) has_point |= usable(x, panel.log_x) && usable(y, panel.log_y);
       if (!has_point) continue;  // gnuplot refuses an empty datablock on a log axis
+      const Series& series = panel.series[k];
       plot << (any ? ", " : "plot ") << "$d" << p << '_' << k << " using 1:2 with "
-           << (panel.series[k].lines ? "linespoints pt 7 ps 0.8 lw 1.5" : "points pt 6 ps 1.4 lc rgb 'black'")
-           << " title " << quoted(panel.series[k].title);
+           << (series.dashed  ? "lines dt 2 lw 1.5"
+               : series.lines ? "linespoints pt 7 ps 0.8 lw 1.5"
+                              : "points pt 6 ps 1.4")
+           << (series.color.empty() ? (series.lines ? "" : " lc rgb 'black'") : " lc rgb " + quoted(series.color))
+           << " title " << quoted(series.title);
       any = true;
     }
     if (any) s << plot.str() << "\n";
@@ -88,11 +92,13 @@ std::string gnuplot_script(const Figure& figure, const std::filesystem::path& pn
 }
 
 void draw_figure(const Figure& figure, const std::filesystem::path& png, const std::filesystem::path& script_path) {
-  const std::filesystem::path temporary = png.parent_path() / ("." + png.filename().string() + ".tmp.png");
+  // Hidden temporaries beside the PNG (same file system, so the rename is atomic).
+  const std::string hidden = str(".", png.filename().string());
+  const std::filesystem::path temporary = png.parent_path() / str(hidden, ".tmp.png");
   const std::string script = gnuplot_script(figure, temporary);
   // Keep the script with the PNG's own name in it, so running it by hand redraws the real file.
   write_file_atomically(script_path, [&](std::ostream& out) { out << gnuplot_script(figure, png); });
-  const std::filesystem::path run_script = png.parent_path() / ("." + png.filename().string() + ".tmp.gp");
+  const std::filesystem::path run_script = png.parent_path() / str(hidden, ".tmp.gp");
   write_file_atomically(run_script, [&](std::ostream& out) { out << script; });
   const ProcessResult run = run_process({"gnuplot", run_script.string()});
   std::error_code ec;

@@ -10,9 +10,16 @@
 namespace spume::report {
 
 struct Series {
+  Series() = default;
+  Series(std::string title_, std::vector<std::pair<double, double>> points_ = {}, bool lines_ = true,
+         bool dashed_ = false, std::string color_ = {})
+      : title(std::move(title_)), points(std::move(points_)), lines(lines_), dashed(dashed_), color(std::move(color_)) {}
+
   std::string title;
   std::vector<std::pair<double, double>> points;  // (x, y); on log axes non-positive values are left out
   bool lines = true;                              // false: points only (measured reference data)
+  bool dashed = false;                            // a level drawn for comparison (a floor, a reference cost)
+  std::string color;                              // gnuplot colour name; empty: the default cycle
 };
 
 struct Panel {

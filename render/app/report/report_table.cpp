@@ -46,7 +46,10 @@ std::string markdown_cell(const std::string& text) {
 std::string to_csv(const Table& t) {
   std::string out;
   auto line = [&](const std::vector<std::string>& cells) {
-    for (size_t i = 0; i < cells.size(); ++i) out += (i ? "," : "") + csv_cell(cells[i]);
+    for (size_t i = 0; i < cells.size(); ++i) {
+      if (i) out += ',';
+      out += csv_cell(cells[i]);
+    }
     out += '\n';
   };
   line(t.columns);

@@ -36,7 +36,9 @@ StudyResult study_stability(const StudyContext& c) {
   r.measures =
       "Every case of the stability suite (extreme and unreasonable inputs: degenerate fluids, huge time steps, "
       "stiff drag, emission budgets, bad files, solver limits; tests/stability, ctest label `stability`) is run from "
-      "the suite's own binary and tabulated; the slow *Full* cases (label stability-full) are left out";
+      "the suite's own binary and tabulated";
+  r.measures += c.quick ? "; --quick leaves out the slow *Full* cases (label stability-full)"
+                        : ", the slow *Full* cases (label stability-full) included";
   const std::filesystem::path binary = suite_binary(c);
   const std::filesystem::path json =
       std::filesystem::temp_directory_path() / str("spume_report_stability_", getpid(), ".json");
@@ -60,7 +62,7 @@ StudyResult study_stability(const StudyContext& c) {
   int passed = 0, failed = 0;
   double total = 0.0;
   std::vector<std::string> failing;
-  Series pass_times{"passed", {}, false}, fail_times{"failed", {}, false};
+  Series pass_times{"passed", {}, false, false, "dark-green"}, fail_times{"failed", {}, false, false, "red"};
   int index = 0;
   for (const Json& suite : doc.at("testsuites")) {
     for (const Json& test : suite.at("testsuite")) {

@@ -125,8 +125,8 @@ StudyResult study_surface(const StudyContext& c) {
                    " ms and ", num(fine.ms, 3), " ms (", num(fine.ms / def.ms, 3), "x the default). ");
   }
   reading +=
-      "Refining the grid below 1 r removes little distance: what remains is the colour field's own iso-surface (the "
-      "kernel smooths edges and corners over h = 4r and pulls a curved surface inward), not the grid's sampling of it.";
+      "Below 1 r the grid stops mattering: what remains is set by the particles themselves (the lattice ball's "
+      "steps, the kernel rounding the box's edges and corners over h = 4r), not by the grid's sampling of the field.";
   r.reading = reading;
   r.figure.panels = {error, time};
   r.figure.columns = 2;
