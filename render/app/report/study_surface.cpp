@@ -100,7 +100,8 @@ StudyResult study_surface(const StudyContext& c) {
               "|vertex distance| to the analytic surface (units of r)", true, true, false, {}, 2};
   Panel time{"Reconstruction time", "marching-cubes cell (units of r)", "ms per reconstruction", true, true, false, {}, 2};
   std::string reading;
-  bool grid_matters = false;  // does refining below the default still move the mean distance by 30% or more?
+  // Does refining below the default still move the mean distance, by 30% and by more than 0.02 r?
+  bool grid_matters = false;
   for (size_t s = 0; s < shapes.size(); ++s) {
     const Shape& shape = shapes[s];
     const std::string label = s == 0 ? "ball" : "box";
@@ -119,7 +120,7 @@ StudyResult study_surface(const StudyContext& c) {
     const Measure& coarse = ms.front();
     const Measure& fine = ms.back();
     const Measure& def = ms[size_t(at_default)];
-    grid_matters |= std::abs(fine.mean - def.mean) >= 0.3 * def.mean;
+    grid_matters |= std::abs(fine.mean - def.mean) >= std::max(0.3 * def.mean, 0.02);
     reading += str("For the ", shape.name, ", the mean vertex distance goes from ", num(coarse.mean, 3), " r at cell ",
                    num(cells.front()), " r to ", num(def.mean, 3), " r at the default 1 r and ", num(fine.mean, 3),
                    " r at ", num(cells.back()), " r (max ", num(fine.max, 3), " r; mean signed ", num(fine.bias, 3),
@@ -127,9 +128,9 @@ StudyResult study_surface(const StudyContext& c) {
                    " ms and ", num(fine.ms, 3), " ms (", num(fine.ms / def.ms, 3), "x the default). ");
   }
   reading += grid_matters
-                 ? "Refining below 1 r still moves the mean distance by 30% or more for at least one shape: the grid's "
+                 ? "Refining below 1 r still moves the mean distance (by 30% and more than 0.02 r) for at least one shape: the grid's "
                    "sampling of the colour field is part of the error there."
-                 : "Below 1 r the grid stops mattering (the mean distance moves by less than 30%): what remains is set "
+                 : "Below 1 r the grid stops mattering (the mean distance moves by less than 30% or less than 0.02 r): what remains is set "
                    "by the particles themselves (the lattice ball's steps, the kernel rounding the box's edges and "
                    "corners over h = 4r), not by the grid's sampling of the field.";
   r.reading = reading;
