@@ -80,7 +80,8 @@ StudyResult study_stability(const StudyContext& c) {
     }
   }
   if (passed + failed == 0) fail(binary.string(), ": ran no case (exit code ", run.exit_code, ")");
-  r.figure.panels = {Panel{"Stability cases: run time and result", "case (row of the table)", "s (log)", false, true,
+  r.figure.panels = {Panel{"Stability cases: run time and result", "case (row of the table)",
+                           "run time (s; under 1 ms shown at 1 ms)", false, true,
                            false, {pass_times, fail_times}}};
   r.reading = str(passed, " of ", passed + failed, " cases pass", failed ? "; failing: " : "", [&] {
     std::string list;
