@@ -1,10 +1,11 @@
-// End to end: `spume report --quick --only surface,stability` writes its CSVs, plots and report.md
-// with sane values; bad options are clear errors.
+// End to end: `spume report --quick` writes its CSVs, plots and report.md with sane values (surface and
+// stability without a scene; render and diffuse on a tiny solver scene); bad options are clear errors.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -101,6 +102,64 @@ TEST(ReportCommand, MissingSceneIsAnErrorBeforeAnyWork) {
   const Result r = run_spume("report /nonexistent/scene.json --only render --quiet --out /tmp/spume_report_never");
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.output.find("/nonexistent/scene.json: no such scene file"), std::string::npos) << r.output;
+}
+
+}  // namespace
+
+namespace {
+
+// The render and diffuse studies on a tiny solver scene: it is simulated by the ordinary stages, then
+// measured. The values are checked against what the methods must do, not against stored numbers.
+TEST(ReportCommand, QuickRenderAndDiffuseOnATinySceneConvergeAsTheyMust) {
+  const fs::path out = fs::temp_directory_path() / ("spume_report_tiny_" + std::to_string(getpid()));
+  fs::remove_all(out);
+  const Result r = run_spume("report " + std::string(SPUME_TEST_DATA_DIR) + "/report_tiny.json --quick --only render,diffuse --quiet --out " +
+                             out.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const fs::path dir = out / "report";
+  for (const char* name : {"render.csv", "render.png", "diffuse.csv", "diffuse.png", "report.md"})
+    EXPECT_TRUE(fs::is_regular_file(dir / name)) << name;
+
+  // Render: the exact row, then the march at 2r ... r/8 with errors that shrink (first order: 16x
+  // over the 16x range; at least 4x asked here) and RMSE never above the maximum.
+  const auto render = read_csv(dir / "render.csv");
+  ASSERT_EQ(render.size(), 7u);
+  EXPECT_EQ(render[1][0], "exact");
+  EXPECT_EQ(render[1][4], "0");
+  for (size_t i = 2; i < render.size(); ++i) {
+    EXPECT_EQ(render[i][0], "march");
+    EXPECT_GT(std::stod(render[i][4]), 0.0);
+    EXPECT_LE(std::stod(render[i][4]), std::stod(render[i][5]));
+  }
+  EXPECT_LT(4 * std::stod(render[6][4]), std::stod(render[2][4])) << "L RMSE at r/8 vs 2r";
+
+  // Diffuse, analytic: Euler-Cromer spray first order against the parabola, exact spray and
+  // exponential bubble at float rounding; the paper's bubble no closer to the ODE at 64 substeps.
+  const auto diffuse = read_csv(dir / "diffuse.csv");
+  auto error_exact = [&](const std::string& integrator, const std::string& substeps) {
+    for (const auto& row : diffuse)
+      if (row.size() > 4 && row[0] == "analytic" && row[1] == integrator && row[2] == substeps) return std::stod(row[4]);
+    ADD_FAILURE() << "no row " << integrator << " " << substeps;
+    return double(NAN);
+  };
+  EXPECT_NEAR(error_exact("spray euler_cromer", "1") / error_exact("spray euler_cromer", "16"), 16.0, 2.0);
+  EXPECT_LT(error_exact("spray exact", "16"), 1e-4);
+  EXPECT_LT(error_exact("bubble exponential", "16"), 1e-4);
+  EXPECT_GT(error_exact("bubble paper", "64"), 0.5 * error_exact("bubble paper", "1"));
+  // Scene rows: both configurations, 7 runs each, the seed-1 64-substep run is the reference (0).
+  int scene_rows = 0;
+  for (const auto& row : diffuse) {
+    if (row[0].rfind("scene", 0) != 0) continue;
+    ++scene_rows;
+    const double density = std::stod(row[5]);
+    EXPECT_GE(density, 0.0);
+    EXPECT_LE(density, 2.0);  // an L1 difference relative to the reference total
+    if (row[2] == "64" && row[0].find("seed 1") != std::string::npos) {
+      EXPECT_EQ(density, 0.0);
+    }
+  }
+  EXPECT_EQ(scene_rows, 14);
+  fs::remove_all(out);
 }
 
 }  // namespace
