@@ -19,8 +19,7 @@ struct StudyEntry {
   report::StudyResult (*run)(const report::StudyContext&);
 };
 
-// Report order (the numbering); run order is the same, the cheap ones first within it
-// would not change the outputs.
+// Run and report order: render, diffuse, fluid, surface, stability (each study is independent).
 constexpr StudyEntry kStudies[] = {{"render", report::study_render},
                                    {"diffuse", report::study_diffuse},
                                    {"fluid", report::study_fluid},

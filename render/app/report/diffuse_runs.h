@@ -1,5 +1,7 @@
 #pragma once
 // The two halves of the diffuse time-integration study (study_diffuse.cpp puts them together).
+#include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
