@@ -28,7 +28,10 @@ constexpr StudyEntry kStudies[] = {{"render", report::study_render},
 
 std::string allowed_studies() {
   std::string s;
-  for (const auto& e : kStudies) s += (s.empty() ? "" : ",") + std::string(e.name);
+  for (const auto& e : kStudies) {
+    if (!s.empty()) s += ',';
+    s += e.name;
+  }
   return s;
 }
 
