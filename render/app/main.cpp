@@ -19,6 +19,7 @@ constexpr const char* kUsage =
     "  lookdev SCENE     one frame for every combination of render keys, as a labelled contact sheet\n"
     "  farm chunks|slurm SCENE  frame chunks for GNU parallel, or a Slurm array job (simulation first)\n"
     "  info FILE...      what a particle file or cache holds\n"
+    "  report [SCENE]    error against run time of each method, and the stability table -> OUT/report/\n"
     "run 'spume COMMAND' without arguments for its options.\n";
 
 struct Command {
@@ -34,7 +35,8 @@ int main(int argc, char** argv) {
                              {"render", spume::command_render},
                              {"lookdev", spume::command_lookdev},
                              {"farm", spume::command_farm},
-                             {"info", spume::command_info}};
+                             {"info", spume::command_info},
+                             {"report", spume::command_report}};
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
     std::fputs(kUsage, argc < 2 ? stderr : stdout);
     return argc < 2 ? 2 : 0;

@@ -1,0 +1,115 @@
+// spume report: error against run time for the renderer, the diffuse integrators, the fluid solver and
+// the surface reconstruction, plus the stability table, as OUT/report/ (CSV + PNG per study, report.md).
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+#include "../cli_args.h"
+#include "../commands.h"
+#include "core/error.h"
+#include "core/parallel.h"
+#include "report_writer.h"
+#include "study.h"
+
+namespace spume {
+namespace {
+
+struct StudyEntry {
+  const char* name;
+  report::StudyResult (*run)(const report::StudyContext&);
+};
+
+// Run and report order: render, diffuse, fluid, surface, stability (each study is independent).
+constexpr StudyEntry kStudies[] = {{"render", report::study_render},
+                                   {"diffuse", report::study_diffuse},
+                                   {"fluid", report::study_fluid},
+                                   {"surface", report::study_surface},
+                                   {"stability", report::study_stability}};
+
+std::string allowed_studies() {
+  std::string s;
+  for (const auto& e : kStudies) {
+    if (!s.empty()) s += ',';
+    s += e.name;
+  }
+  return s;
+}
+
+std::vector<std::string> parse_only(const std::string& text) {
+  std::vector<std::string> names;
+  size_t start = 0;
+  while (start <= text.size()) {
+    const size_t comma = text.find(',', start);
+    const std::string name = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    const bool known = std::any_of(std::begin(kStudies), std::end(kStudies),
+                                   [&](const StudyEntry& e) { return name == e.name; });
+    if (!known) fail("--only: \"", name, "\" is not a study; allowed: ", allowed_studies(), " (comma-separated)");
+    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return names;
+}
+
+}  // namespace
+
+int command_report(const std::vector<std::string>& raw) {
+  const std::vector<cli::OptionSpec> options = {
+      {"quick", false, false, "          smaller problems and fewer settings: a few minutes instead of ~15"},
+      {"only", true, false, "LIST      studies to run, comma-separated: " + allowed_studies() + " (default: all)"},
+      {"out", true, false, "DIR       output root (default out/): the report goes to DIR/report/, scene caches to "
+                           "DIR/<scene>/"},
+      {"threads", true, false, "N         worker threads (default: one per core)"},
+      {"quiet", false, false, "          no progress on stderr"},
+  };
+  const cli::ParsedArgs args = cli::parse(raw, options, "report");
+  if (args.positional.size() > 1)
+    fail("usage: spume report [SCENE.json, default scenes/wave.json] [options]\n", cli::usage_lines(options));
+  if (args.has("threads")) set_thread_count(cli::parse_int(*args.value("threads"), "--threads", 1, 1024));
+  std::vector<std::string> selected;
+  if (auto only = args.value("only")) selected = parse_only(*only);
+  else
+    for (const auto& e : kStudies) selected.push_back(e.name);
+
+  report::StudyContext context;
+  context.scene_path = args.positional.empty() ? "scenes/wave.json" : args.positional[0];
+  context.out_root = args.value("out").value_or("out");
+  context.quick = args.has("quick");
+  context.quiet = args.has("quiet");
+  std::error_code ec;
+  context.exe_dir = std::filesystem::read_symlink("/proc/self/exe", ec).parent_path();
+  const bool needs_scene = std::any_of(selected.begin(), selected.end(),
+                                       [](const std::string& s) { return s == "render" || s == "diffuse"; });
+  if (needs_scene && !std::filesystem::is_regular_file(context.scene_path))
+    fail(context.scene_path.string(), ": no such scene file (the render and diffuse studies need one)");
+  context.progress = [quiet = context.quiet](const std::string& line) {
+    if (!quiet) std::fprintf(stderr, "report: %s\n", line.c_str()), std::fflush(stderr);
+  };
+
+  const std::filesystem::path dir = context.out_root / "report";
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<report::StudyResult> results;
+  for (const auto& entry : kStudies) {
+    if (std::find(selected.begin(), selected.end(), entry.name) == selected.end()) continue;
+    context.progress(str("study ", entry.name, " ..."));
+    const auto t0 = std::chrono::steady_clock::now();
+    report::StudyResult result = with_context(str("study ", entry.name), [&] { return entry.run(context); });
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    report::write_study_files(result, dir);
+    context.progress(str("study ", entry.name, " done in ", report::num(result.seconds, 3), " s -> ",
+                         (dir / (result.key + ".csv")).string()));
+    results.push_back(std::move(result));
+  }
+  report::ReportHeader header;
+  header.scene = context.scene_path.string();
+  header.quick = context.quick;
+  header.threads = thread_count();
+  header.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  header.command = "spume report";
+  for (const auto& a : raw) header.command += " " + a;
+  report::write_report_markdown(header, results, dir);
+  if (!context.quiet) std::printf("Saved: %s\n", (dir / "report.md").string().c_str());
+  return 0;
+}
+
+}  // namespace spume

@@ -1,0 +1,142 @@
+// Study 4: surface reconstruction, marching-cubes cell size against run time and against the distance
+// of the mesh vertices to an analytic surface: a ball of particles (the sphere of the same volume,
+// N (2r)^3) and a box of particles (the box the lattice cells tile).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include "core/error.h"
+#include "surface/reconstruct.h"
+#include "study.h"
+
+namespace spume::report {
+namespace {
+
+constexpr float kR = 0.01f;  // particle radius, m (the results are in units of r)
+
+struct Shape {
+  std::string name;
+  std::vector<Vec3f> particles;
+  std::function<double(const Vec3f&)> distance;  // signed, m: > 0 outside the analytic surface
+};
+
+Shape particle_ball(float radius_in_r) {
+  Shape s{"ball", {}, {}};
+  const float spacing = 2 * kR, radius = radius_in_r * kR;
+  const int n = int(radius / spacing) + 1;
+  for (int k = -n; k <= n; ++k)
+    for (int j = -n; j <= n; ++j)
+      for (int i = -n; i <= n; ++i)
+        if (const Vec3f x = spacing * Vec3f(float(i), float(j), float(k)); x.norm() <= radius) s.particles.push_back(x);
+  // The sphere holding the particles' volume: each particle stands for a (2r)^3 cell.
+  const double equivalent = spacing * std::cbrt(3.0 * double(s.particles.size()) / (4.0 * std::numbers::pi));
+  s.name = str("ball of ", s.particles.size(), " particles (sphere R = ", num(equivalent / kR, 3), " r)");
+  s.distance = [equivalent](const Vec3f& x) { return double(x.norm()) - equivalent; };
+  return s;
+}
+
+Shape particle_box(int n) {
+  Shape s{str("box of ", n, "^3 particles (side ", 2 * n, " r)"), {}, {}};
+  const float spacing = 2 * kR, side = float(n) * spacing;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) s.particles.push_back(spacing * Vec3f(i + 0.5f, j + 0.5f, k + 0.5f));
+  s.distance = [side](const Vec3f& x) {
+    // Signed distance to the box [0, side]^3.
+    const Vec3d q = (x.cast<double>() - Vec3d::Constant(side / 2.0)).cwiseAbs() - Vec3d::Constant(side / 2.0);
+    return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
+  };
+  return s;
+}
+
+struct Measure {
+  double ms = 0, mean = 0, rms = 0, max = 0, bias = 0;  // distances in units of r
+  size_t vertices = 0, triangles = 0;
+};
+
+Measure measure(const Shape& shape, float cell, int repeats) {
+  SurfaceParams p;
+  p.particle_radius = kR;
+  p.cell_factor = cell;
+  Measure m;
+  std::vector<double> times;
+  TriangleMesh mesh;
+  for (int k = 0; k < repeats; ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    mesh = reconstruct_surface(shape.particles, p);
+    times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  }
+  std::sort(times.begin(), times.end());
+  m.ms = times[times.size() / 2];
+  m.vertices = mesh.vertices.size();
+  m.triangles = mesh.triangle_count();
+  if (m.vertices == 0) fail("surface study: the ", shape.name, " gave an empty mesh at cell ", cell, " r");
+  for (const Vec3f& v : mesh.vertices) {
+    const double d = shape.distance(v) / kR;
+    m.mean += std::abs(d), m.rms += d * d, m.bias += d, m.max = std::max(m.max, std::abs(d));
+  }
+  m.mean /= double(m.vertices), m.bias /= double(m.vertices), m.rms = std::sqrt(m.rms / double(m.vertices));
+  return m;
+}
+
+}  // namespace
+
+StudyResult study_surface(const StudyContext& c) {
+  StudyResult r;
+  r.key = "surface";
+  r.title = "4. Surface reconstruction: cell size against distance to the analytic surface and run time";
+  r.measures =
+      "Marching-cubes cell (render.surface_cell, in units of the particle radius r) is varied on a ball and a box of "
+      "particles on the fluid's lattice (spacing 2r, kernel support h = 4r); every mesh vertex is measured against "
+      "the analytic surface: the sphere of the particles' volume N (2r)^3, and the box the lattice cells tile. "
+      "Run time is the median of 3 reconstructions";
+  const std::vector<float> cells = c.quick ? std::vector<float>{2.0f, 1.0f, 0.5f}
+                                           : std::vector<float>{2.0f, 1.5f, 1.0f, 0.75f, 0.5f, 0.35f, 0.25f};
+  const std::vector<Shape> shapes = {particle_ball(c.quick ? 20.0f : 40.0f), particle_box(c.quick ? 24 : 40)};
+  r.table.columns = {"shape", "particles", "cell_r", "vertices", "triangles", "ms", "mean_abs_distance_r",
+                     "rms_distance_r", "max_abs_distance_r", "mean_signed_distance_r"};
+  Panel error{"Mesh vertices against the analytic surface", "marching-cubes cell (units of r)",
+              "|vertex distance| to the analytic surface (units of r)", true, true, false, {}, 2};
+  Panel time{"Reconstruction time", "marching-cubes cell (units of r)", "ms per reconstruction", true, true, false, {}, 2};
+  std::string reading;
+  // Does refining below the default still move the mean distance, by 30% and by more than 0.02 r?
+  bool grid_matters = false;
+  for (size_t s = 0; s < shapes.size(); ++s) {
+    const Shape& shape = shapes[s];
+    const std::string label = s == 0 ? "ball" : "box";
+    Series e{label + ", mean", {}, true}, e_max{label + ", max", {}, true}, t{label, {}, true};
+    std::vector<Measure> ms;
+    for (float cell : cells) {
+      c.progress(str("surface: ", shape.name, ", cell ", cell, " r"));
+      const Measure m = measure(shape, cell, 3);
+      ms.push_back(m);
+      r.table.add_row({s == 0 ? "ball" : "box", std::to_string(shape.particles.size()), num(cell), std::to_string(m.vertices),
+                       std::to_string(m.triangles), num(m.ms), num(m.mean), num(m.rms), num(m.max), num(m.bias)});
+      e.points.push_back({cell, m.mean}), e_max.points.push_back({cell, m.max}), t.points.push_back({cell, m.ms});
+    }
+    error.series.push_back(e), error.series.push_back(e_max), time.series.push_back(t);
+    const auto at_default = std::find(cells.begin(), cells.end(), 1.0f) - cells.begin();
+    const Measure& coarse = ms.front();
+    const Measure& fine = ms.back();
+    const Measure& def = ms[size_t(at_default)];
+    grid_matters |= std::abs(fine.mean - def.mean) >= std::max(0.3 * def.mean, 0.02);
+    reading += str("For the ", shape.name, ", the mean vertex distance goes from ", num(coarse.mean, 3), " r at cell ",
+                   num(cells.front()), " r to ", num(def.mean, 3), " r at the default 1 r and ", num(fine.mean, 3),
+                   " r at ", num(cells.back()), " r (max ", num(fine.max, 3), " r; mean signed ", num(fine.bias, 3),
+                   " r, negative = inside), while the time grows from ", num(coarse.ms, 3), " ms to ", num(def.ms, 3),
+                   " ms and ", num(fine.ms, 3), " ms (", num(fine.ms / def.ms, 3), "x the default). ");
+  }
+  reading += grid_matters
+                 ? "Refining below 1 r still moves the mean distance (by 30% and more than 0.02 r) for at least one shape: the grid's "
+                   "sampling of the colour field is part of the error there."
+                 : "Below 1 r the grid stops mattering (the mean distance moves by less than 30% or less than 0.02 r): what remains is set "
+                   "by the particles themselves (the lattice ball's steps, the kernel rounding the box's edges and "
+                   "corners over h = 4r), not by the grid's sampling of the field.";
+  r.reading = reading;
+  r.figure.panels = {error, time};
+  r.figure.columns = 2;
+  return r;
+}
+
+}  // namespace spume::report

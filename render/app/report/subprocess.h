@@ -1,0 +1,17 @@
+#pragma once
+// Runs a program (found on PATH or by path) with its stdout and stderr captured, and waits for it.
+#include <string>
+#include <vector>
+
+namespace spume::report {
+
+struct ProcessResult {
+  bool started = false;   // false: the program could not be run (not found, not executable)
+  int exit_code = -1;     // -1 when killed by a signal
+  std::string output;     // stdout and stderr, interleaved
+  std::string start_error;
+};
+
+ProcessResult run_process(const std::vector<std::string>& argv);
+
+}  // namespace spume::report
