@@ -25,11 +25,12 @@ float emission_lifetime(const DiffuseParams& params, float i_ta, float i_wc, flo
   return params.lifetime_min + (params.lifetime_max - params.lifetime_min) * std::clamp(potential, 0.0f, 1.0f);
 }
 
-void sample_cylinder(const Vec3f& x_f, const Vec3f& v_f, float dt, float radius, const std::array<float, 4>& u,
-                     Vec3f& x_d, Vec3f& v_d) {
-  const float speed = v_f.norm();
-  // A resting particle has no axis; its cylinder has zero length and any frame will do (MODEL.md §8.2).
-  const Vec3f axis = speed > 0.0f ? Vec3f(v_f / speed) : Vec3f::UnitY();
+void sample_cylinder(const Vec3f& x_f, const Vec3f& motion, const Vec3f& v_f, float dt, float radius,
+                     const std::array<float, 4>& u, Vec3f& x_d, Vec3f& v_d) {
+  const float speed = motion.norm();
+  // A particle that does not move has no axis; its cylinder has zero length and any frame will do
+  // (MODEL.md §8.2).
+  const Vec3f axis = speed > 0.0f ? Vec3f(motion / speed) : Vec3f::UnitY();
   Vec3f e1, e2;
   orthonormal_basis(axis, e1, e2);
   const float r = radius * std::sqrt(u[0]);  // sqrt: uniform over the disc (MODEL.md §8.7)
@@ -115,8 +116,8 @@ EmissionResult emit_diffuse(const FluidStepState& state, const FormationPotentia
         if (at == UINT64_MAX) continue;
         const size_t k = base + at;
         const auto u = random_uniform4({params.seed, RandomPurpose::CylinderSample, step, state.ids[i], s});
-        sample_cylinder(state.positions[i], state.velocities[i], dt, particle_radius, u, out.positions[k],
-                        out.velocities[k]);
+        sample_cylinder(state.positions[i], state.motion[i], state.velocities[i], dt, particle_radius, u,
+                        out.positions[k], out.velocities[k]);
         out.ids[k] = diffuse_id(state.ids[i], step, s);
         out.lifetimes[k] = lifetime;
         out.types[k] = DiffuseType::Spray;  // provisional: classified before any use

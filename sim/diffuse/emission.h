@@ -24,8 +24,11 @@ uint32_t round_emission(float expected, const RandomKey& key);
 // at full potential, linear in P = I_k (k_ta I_ta + k_wc I_wc) / (k_ta + k_wc).
 float emission_lifetime(const DiffuseParams& params, float i_ta, float i_wc, float i_k);
 
-// Sample one particle in the cylinder of radius r_V around the fluid particle's path over dt (MODEL.md §2).
-void sample_cylinder(const Vec3f& x_f, const Vec3f& v_f, float dt, float radius, const std::array<float, 4>& u,
+// Sample one particle in the cylinder of radius r_V around the fluid particle's path over dt (MODEL.md §2):
+// the axis follows its motion x_f(t) -> x_f(t + dt) (`motion` = that displacement / dt), while the new
+// particle's velocity is v_f(t) plus the radial offset, as printed.
+void sample_cylinder(const Vec3f& x_f, const Vec3f& motion, const Vec3f& v_f, float dt, float radius,
+                     const std::array<float, 4>& u,
                      Vec3f& x_d, Vec3f& v_d);
 
 // Per-fluid-particle counts and offsets, kept between steps by a caller that emits every step.

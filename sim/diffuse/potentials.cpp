@@ -7,6 +7,7 @@
 #include "core/parallel.h"
 #include "diffuse/kernels.h"
 #include "grid/block_buffer.h"
+#include "scene/solid_coverage.h"
 
 namespace spume {
 namespace {
@@ -27,7 +28,8 @@ void for_each_cell_block(const NeighbourGrid& grid, std::initializer_list<std::s
 }  // namespace
 
 void compute_normals(const NeighbourGrid& grid, float particle_volume, const DiffuseParams& params,
-                     std::vector<Vec3f>& normals) {
+                     const SolidSet* solids, std::vector<Vec3f>& normals) {
+  const bool see_solids = solids && !solids->empty();
   const float h = grid.support_radius(), inv_h2 = 1.0f / (h * h);
   const auto points = grid.sorted_points();
   const auto order = grid.sorted_to_original();
@@ -49,20 +51,29 @@ void compute_normals(const NeighbourGrid& grid, float particle_volume, const Dif
           const float dx = bx[j + l] - px, dy = by[j + l] - py, dz = bz[j + l] - pz;
           count[l] += (dx * dx + dy * dy + dz * dz) * inv_h2 <= 1.0f ? 1.0f : 0.0f;
         }
-      if (lane_sum(count) >= max_neighbours) continue;
+      // Next to a wall the count is scaled up to the water the wall stands for (MODEL.md §8.10-11).
+      const float fluid_count = lane_sum(count);
+      const SolidCoverage cover = see_solids ? solid_coverage(*solids, points[si], h, true) : SolidCoverage{};
+      const float free_share = std::max(1.0f - cover.fraction, 0.1f);
+      if (wet_wall_count(fluid_count, cover.fraction) >= max_neighbours) continue;
       float gx[kLanes] = {}, gy[kLanes] = {}, gz[kLanes] = {};
       for (size_t j = 0; j < m; j += kLanes)
         for (size_t l = 0; l < kLanes; ++l) {
           const float dx = bx[j + l] - px, dy = by[j + l] - py, dz = bz[j + l] - pz;
           const float q2 = std::min((dx * dx + dy * dy + dz * dz) * inv_h2, 4.0f);
           const float q = std::sqrt(q2);
-          const float t = std::max(1.0f - q, 0.0f);
-          const float dw = q <= 0.5f ? 18.0f * q2 - 12.0f * q : -6.0f * t * t;
+          const float dw = cubic_spline_slope(q, q2);
           // Itself or a coincident particle has no direction (MODEL.md §8.2): weight 0.
           const float f = q2 > 0.0f ? dw / q : 0.0f;
           gx[l] -= f * dx, gy[l] -= f * dy, gz[l] -= f * dz;  // (x_i - x_j) = -d
         }
-      const Vec3f gradient = scale * Vec3f(lane_sum(gx), lane_sum(gy), lane_sum(gz));
+      Vec3f gradient = scale * Vec3f(lane_sum(gx), lane_sum(gy), lane_sum(gz));
+      // The wall adds the gradient of the water it replaces, as far as the free side is wet: under
+      // water the two cancel (interior), at the waterline half of it keeps the normal pointing up.
+      if (cover.fraction > 0.0f) {
+        const float full_free = full * free_share;
+        gradient += std::min(fluid_count / full_free, 1.0f) * cover.gradient;
+      }
       const float magnitude = gradient.norm();
       if (magnitude * h >= params.surface_threshold && magnitude > 0.0f) normals[order[si]] = -gradient / magnitude;
     }
@@ -70,9 +81,9 @@ void compute_normals(const NeighbourGrid& grid, float particle_volume, const Dif
 }
 
 void compute_potentials(const NeighbourGrid& grid, const FluidStepState& state, const DiffuseParams& params,
-                        float particle_volume, FormationPotentials& out) {
+                        float particle_volume, const SolidSet* solids, FormationPotentials& out) {
   const size_t n = state.positions.size();
-  if (params.k_wc > 0.0f) compute_normals(grid, particle_volume, params, out.normals);
+  if (params.k_wc > 0.0f) compute_normals(grid, particle_volume, params, solids, out.normals);
   else out.normals.assign(n, Vec3f::Zero());  // no crest emission: no normals needed
   out.trapped_air.assign(n, 0.0f);
   out.wave_crest.assign(n, 0.0f);
@@ -122,7 +133,7 @@ void compute_potentials(const NeighbourGrid& grid, const FluidStepState& state, 
             const float r = std::sqrt(d2);
             // Zero distance has no direction (MODEL.md §8.2) and beyond h has no weight (Eq. 3).
             const float has_direction = d2 > 0.0f ? 1.0f : 0.0f;
-            const float w = has_direction * std::max(1.0f - r * inv_h, 0.0f);
+            const float w = has_direction * paper_weight_at(r * inv_h);
             const float inv_r = 1.0f / std::max(r, 1e-30f);
             const float ux = -dx * inv_r, uy = -dy * inv_r, uz = -dz * inv_r;  // x^_ij
             // Eq. 2: |v_ij| (1 - v^_ij . x^_ij) = |v_ij| - v_ij . x^_ij, zero-safe for v_ij = 0.

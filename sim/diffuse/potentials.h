@@ -6,6 +6,7 @@
 #include "diffuse/fluid_state.h"
 #include "diffuse/params.h"
 #include "grid/neighbour_grid.h"
+#include "scene/solids.h"
 
 namespace spume {
 
@@ -25,11 +26,13 @@ struct FormationPotentials {
 // for surface particles (|grad c_i| h >= surface_threshold and fewer than surface_neighbour_fraction
 // of a full neighbourhood within h), else zero: inside, the direction is noise (MODEL.md §8.10).
 // `grid` must be built over state.positions with support radius h.
+// `solids` (may be null) cut the neighbourhood: next to a wet wall the count and the gradient include
+// the water the wall stands for (scene/solid_coverage.h), so the layer against a wall is interior.
 void compute_normals(const NeighbourGrid& grid, float particle_volume, const DiffuseParams& params,
-                     std::vector<Vec3f>& normals);
+                     const SolidSet* solids, std::vector<Vec3f>& normals);
 
 // Particles with I_k = 0 get I_ta = I_wc = 0 without their neighbour sums: Eq. 8 multiplies by I_k.
 void compute_potentials(const NeighbourGrid& grid, const FluidStepState& state, const DiffuseParams& params,
-                        float particle_volume, FormationPotentials& out);
+                        float particle_volume, const SolidSet* solids, FormationPotentials& out);
 
 }  // namespace spume

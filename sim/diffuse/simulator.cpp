@@ -7,6 +7,7 @@
 #include "core/parallel.h"
 #include "diffuse/advection.h"
 #include "diffuse/emission.h"
+#include "scene/solid_coverage.h"
 
 namespace spume {
 namespace {
@@ -30,7 +31,6 @@ class StageTimer {
 DiffuseSimulator::DiffuseSimulator(DiffuseSetup setup) : setup_(std::move(setup)) {
   const float r = setup_.fluid.particle_radius;
   particle_volume_ = 8.0f * r * r * r;  // spacing 2r
-  rest_number_density_ = 1.0f / particle_volume_;
 }
 
 const SolidSet& DiffuseSimulator::solids_at(double t, SolidSet& slot) const {
@@ -53,12 +53,16 @@ void DiffuseSimulator::classify(const FluidStepState& state, uint32_t step, bool
   sample_fluid(grid_, sorted_motion_, particles_.positions, samples_);
   const DiffuseParams& p = setup_.params;
   const SolidSet& solids = solids_at(t, classify_solids_);
+  solids_now_ = &solids;
   const bool count_solids = p.count_solids && !solids.empty();
   const float h = setup_.fluid.support_radius;
   parallel_for(particles_.size(), 4096, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
       float count = samples_.neighbour_count[i];
-      if (count_solids) count += rest_number_density_ * solids.solid_volume_within(particles_.positions[i], h);
+      // A wall counts as the water it replaces only as far as the wall is wet (MODEL.md §8.11): a
+      // dry wall adds nothing, a submerged floor a full neighbourhood, the waterline about half.
+      if (count_solids && count > 0.0f)
+        count = wet_wall_count(count, solid_coverage(solids, particles_.positions[i], h, false).fraction);
       samples_.neighbour_count[i] = count;
       // Particles born in the previous step have no type yet: no hysteresis for them.
       const bool newborn = diffuse_id_step(particles_.ids[i]) == ((step - 1) & kMaxBirthStep);
@@ -115,7 +119,7 @@ void DiffuseSimulator::step(const FluidStepState& state, uint32_t step, float dt
   if (p.k_ta > 0.0f || p.k_wc > 0.0f) {
     {
       StageTimer timer(pending_, Stage::Potentials);
-      compute_potentials(grid_, state, p, particle_volume_, potentials_);
+      compute_potentials(grid_, state, p, particle_volume_, solids_now_, potentials_);
     }
     StageTimer timer(pending_, Stage::Emit);
     // The budget counts the particles that survive this step.

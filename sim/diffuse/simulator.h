@@ -79,8 +79,8 @@ class DiffuseSimulator {
   EmissionBuffers emission_buffers_;
   SolidSet classify_solids_, step_solids_;
   FrameStats pending_;  // accumulates between frames
+  const SolidSet* solids_now_ = nullptr;  // the solids at the time of the last classify()
   float particle_volume_;
-  float rest_number_density_;
 };
 
 }  // namespace spume

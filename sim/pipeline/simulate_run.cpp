@@ -84,7 +84,8 @@ bool diffuse_caches_current(const SimScene& scene, const FluidSource& source, co
                           diffuse_cache_paths(scene_out, frames));
 }
 
-SimulateSummary run_simulation(const SimScene& scene, FluidSource& source, const SimulateOptions& options) {
+SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs, FluidSource& source,
+                               const SimulateOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const std::vector<int> frames = diffuse_frames_to_run(scene, source, options);
   SimulateSummary summary;
@@ -105,9 +106,9 @@ SimulateSummary run_simulation(const SimScene& scene, FluidSource& source, const
   DiffuseSetup setup;
   setup.params = scene.diffuse;
   setup.fluid = scene.fluid;
-  setup.solids = scene.solids;
+  setup.solids = inputs.solids;
   setup.bodies = scene_body_track(scene, summary.out_dir);
-  setup.domain = scene.domain.empty() ? default_domain(scene, current) : scene.domain;
+  setup.domain = inputs.domain;
   DiffuseSimulator simulator(setup);
 
   write_file_atomically(summary.out_dir / "diffuse_params.json",
@@ -120,6 +121,7 @@ SimulateSummary run_simulation(const SimScene& scene, FluidSource& source, const
   }
 
   bool warned_budget = false;
+  int domain_warnings = 0;  // frames that lost more than 1% of what they emitted to the domain
   for (size_t k = 0; k < frames.size(); ++k) {
     std::optional<FluidFrame> next;
     if (k + 1 < frames.size())
@@ -141,6 +143,14 @@ SimulateSummary run_simulation(const SimScene& scene, FluidSource& source, const
     const FrameStats stats = with_context(str("frame ", frames[k]), [&] {
       return simulator.process_frame(current, next ? &*next : nullptr, write_frame);
     });
+    if (stats.generated > 0 && stats.removed * 100 > stats.generated) {
+      if (++domain_warnings <= 3)
+        progress.message(str("warning: frame ", stats.frame, " removed ", stats.removed, " diffuse particles outside the "
+                             "domain, ", 100.0 * double(stats.removed) / double(stats.generated),
+                             "% of the ", stats.generated, " emitted; if the flow reaches beyond the domain, widen "
+                             "domain.min / domain.max"));
+      if (domain_warnings == 3) progress.message("  (more frames like this are counted in stats.csv, column removed)");
+    }
     std::ostringstream row;
     write_stats_row(row, stats, current.time, io_ms);
     stats_text += row.str();

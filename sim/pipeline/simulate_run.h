@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "pipeline/scene_inputs.h"
 #include "scene/fluid_source.h"
 #include "scene/sim_scene.h"
 
@@ -39,6 +40,8 @@ std::vector<int> diffuse_frames_to_run(const SimScene& scene, const FluidSource&
 // The caches run_simulation would make are on disk and made from the scene's current diffuse keys.
 bool diffuse_caches_current(const SimScene& scene, const FluidSource& source, const SimulateOptions& options);
 
-SimulateSummary run_simulation(const SimScene& scene, FluidSource& source, const SimulateOptions& options);
+// `inputs`: read_scene_inputs of the scene (solids with an inferred tank, the domain).
+SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs, FluidSource& source,
+                               const SimulateOptions& options);
 
 }  // namespace spume

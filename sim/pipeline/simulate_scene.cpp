@@ -37,7 +37,8 @@ SceneSimulation simulate_scene(const SimScene& scene, const SimulateOptions& opt
     SimulateOptions diffuse_options = options;
     // New fluid frames make the diffuse caches stale even when the keys did not change.
     diffuse_options.force = options.force || (result.fluid.frames > 0 && !result.fluid.reused);
-    result.diffuse = run_simulation(scene, *source, diffuse_options);
+    const SceneInputs inputs = read_scene_inputs(scene, options.out_root, options.quiet);
+    result.diffuse = run_simulation(scene, inputs, *source, diffuse_options);
   }
   return result;
 }

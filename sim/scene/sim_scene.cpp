@@ -63,7 +63,8 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
       root.fail_at("domain", "min must be below max on every axis");
   }
 
-  scene.solids = read_solids(root, scene.gravity);
+  scene.solids = scene.source == FluidSourceKind::Files ? read_solids(root, scene.gravity, scene.infer_container)
+                                                        : read_solids(root, scene.gravity);
   scene.diffuse = read_diffuse_params(root.child("diffuse"), scene.fluid, scene.gravity);
   const ParamReader output = root.child("output");
   scene.write_bgeo = output.boolean("bgeo", false);
@@ -82,7 +83,7 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
   return scene;
 }
 
-Aabb default_domain(const SimScene& scene, const FluidFrame& first) {
+Aabb default_domain(const SimScene& scene, const Aabb& fluid_bounds) {
   Aabb box;
   for (const Solid& s : scene.solids.solids())
     if (s.kind == Solid::Kind::Tank) {
@@ -92,7 +93,7 @@ Aabb default_domain(const SimScene& scene, const FluidFrame& first) {
       box.extend(top);
     }
   if (!box.empty()) return box;
-  for (const Vec3f& p : first.positions) box.extend(p);
+  box = fluid_bounds;
   if (box.empty()) return box;
   const Vec3f margin = (box.max - box.min).cwiseMax(Vec3f::Constant(8.0f * scene.fluid.support_radius));
   box.min -= margin;

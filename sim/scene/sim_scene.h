@@ -24,7 +24,8 @@ struct SimScene {
   std::optional<std::pair<int, int>> frames;  // inclusive frame range to use, if limited
   Vec3f gravity = Vec3f(0.0f, -9.81f, 0.0f);  // m/s^2
   SolidSet solids;
-  Aabb domain;                          // empty: derived from the tank or the first fluid frame
+  bool infer_container = false;         // Files: a tank {"infer": true}, found from the fluid (scene/container.h)
+  Aabb domain;                          // empty: derived from the tank or every fluid frame's bounds
   DiffuseParams diffuse;
   bool write_bgeo = false;              // also write diffuse frames as BGEO for Houdini/Blender
   bool write_fluid_bgeo = false;        // Solver: also write the fluid frames as BGEO
@@ -46,8 +47,9 @@ constexpr int kDefaultSolverFrames = 100;
 SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& scene_dir,
                         const std::string& default_name);
 
-// The domain used when the scene gives none: the tank (open top raised by its height) if there is
-// one, else the first frame's fluid bounds grown by their extent on every side.
-Aabb default_domain(const SimScene& scene, const FluidFrame& first);
+// The domain used when the scene gives none: the tanks (an open top raised by the tank's height) if
+// there are any, else the fluid's bounds over the whole sequence grown by their extent on every side
+// (at least 8 h), so nothing the flow reaches is lost and spray falling away is.
+Aabb default_domain(const SimScene& scene, const Aabb& fluid_bounds);
 
 }  // namespace spume

@@ -6,7 +6,6 @@
 #include <numbers>
 
 #include "core/error.h"
-#include "diffuse/kernels.h"
 
 namespace spume {
 namespace {
@@ -224,30 +223,6 @@ bool SolidSet::inside_other_than(const Vec3f& p, const Solid& skip) const {
   for (const Solid& s : solids_)
     if (&s != &skip && contains(s, p)) return true;
   return false;
-}
-
-float SolidSet::solid_volume_within(const Vec3f& p, float h) const {
-  float volume = 0.0f;
-  for (const Solid& s : solids_) {
-    switch (s.kind) {
-      case Solid::Kind::Tank:
-        for (int a = 0; a < 3; ++a) {
-          if (above_open_walls(s, p, a)) continue;
-          volume += sphere_cap_volume(p[a] - s.min[a], h);
-          if (!(s.open_top && a == s.up_axis)) volume += sphere_cap_volume(s.max[a] - p[a], h);
-        }
-        break;
-      case Solid::Kind::Box: {
-        Vec3f n;
-        volume += sphere_cap_volume(oriented_box_distance(s, p, n), h);
-        break;
-      }
-      case Solid::Kind::Sphere:
-        volume += sphere_cap_volume((p - s.center).norm() - s.radius, h);
-        break;
-    }
-  }
-  return std::min(volume, 4.0f / 3.0f * std::numbers::pi_v<float> * h * h * h);
 }
 
 bool SolidSet::push_out(Vec3f& p, Vec3f& v, float skin) const {

@@ -111,12 +111,6 @@ class SolidSet {
   // dynamic tank or a dynamic solid with a motion, non-positive mass or density, bad friction.
   void validate() const;
 
-  // Volume within distance h of p that lies inside solids, treating each nearby solid face as a plane
-  // (exact for a flat wall, an approximation at edges and on curved obstacles), capped at the sphere.
-  // Uses the geometry as stored (call on at_time(t) for moving solids). Rotated boxes are measured in
-  // their own frame.
-  float solid_volume_within(const Vec3f& p, float h) const;
-
   // Moves p into free space if it is inside a solid, onto the surface plus `skin`, and removes the
   // velocity component pointing into the solid (relative to the solid's velocity at p, see
   // Solid::velocity_at; zero for static solids). Returns true if p was moved. Uses the geometry as

@@ -64,7 +64,8 @@ Dynamics read_dynamics(const ParamReader& d) {
 
 }  // namespace
 
-SolidSet read_solids(const ParamReader& root, const Vec3f& gravity) {
+SolidSet read_solids(const ParamReader& root, const Vec3f& gravity, bool& infer_tank) {
+  infer_tank = false;
   int up = 1;
   if (gravity.norm() > 0.0f) gravity.cwiseAbs().maxCoeff(&up);
   std::vector<Solid> solids;
@@ -72,6 +73,14 @@ SolidSet read_solids(const ParamReader& root, const Vec3f& gravity) {
     const Solid defaults;
     Solid s;
     const std::string type = r.choice("type", "tank", {"tank", "box", "sphere"});
+    if (type == "tank" && r.boolean("infer", false)) {
+      for (const char* key : {"min", "max", "motion", "rotation", "dynamic"})
+        if (r.has(key)) r.fail_at(key, "an inferred tank takes its walls from the fluid; give either \"infer\" or the geometry");
+      if (infer_tank) r.fail_at("infer", "only one tank can be inferred");
+      infer_tank = true;
+      continue;
+    }
+    if (type != "tank" && r.has("infer")) r.fail_at("infer", "only a tank can be inferred");
     if (type == "sphere") {
       s.kind = Solid::Kind::Sphere;
       s.center = required_vec3(r, "center", "the sphere's centre [x, y, z] in m");
@@ -102,6 +111,13 @@ SolidSet read_solids(const ParamReader& root, const Vec3f& gravity) {
   }
   SolidSet set(std::move(solids));
   with_context(root.source() + ": " + root.path_of("solids"), [&] { set.validate(); });
+  return set;
+}
+
+SolidSet read_solids(const ParamReader& root, const Vec3f& gravity) {
+  bool infer = false;
+  SolidSet set = read_solids(root, gravity, infer);
+  if (infer) root.fail_at("solids", "a tank inferred from the fluid (\"infer\": true) needs fluid files (fluid.source \"files\")");
   return set;
 }
 

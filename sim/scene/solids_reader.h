@@ -17,7 +17,8 @@
 //      "rotation": {"axis": [0, 0, 1], "angle": 0.3},    // optional, boxes only: about the box centre, rad
 //      "dynamic": {"density": 500,                       // kg/m^3, or "mass": kg (exactly one of them)
 //                  "friction": 0.5}},                    // Coulomb coefficient, default 0.5
-//     {"type": "sphere", ..., "dynamic": {"mass": 2.0}}
+//     {"type": "sphere", ..., "dynamic": {"mass": 2.0}},
+//     {"type": "tank", "infer": true}   // file sources: the walls the fluid presses on (scene/container.h)
 //   ]
 // Motions translate the solid: offset(t) is added to its geometry (scene/solids.h). A tank's "up" is
 // the axis along which gravity is strongest. A "dynamic" box or sphere is a rigid body moved by
@@ -29,7 +30,10 @@
 
 namespace spume {
 
-// Reads root["solids"] (absent: no solids). Errors name the file and key path.
+// Reads root["solids"] (absent: no solids). Errors name the file and key path. A tank with "infer":
+// true is not in the set: `infer_tank` says it was asked for.
+SolidSet read_solids(const ParamReader& root, const Vec3f& gravity, bool& infer_tank);
+// The same where no tank may be inferred (an "infer" entry is an error).
 SolidSet read_solids(const ParamReader& root, const Vec3f& gravity);
 
 }  // namespace spume

@@ -102,7 +102,8 @@ TEST(DiffuseMovingSolids, BoxSweepingThroughACloudPushesItAtTheWallsSpeed) {
 }
 
 TEST(DiffuseMovingSolids, ClassificationCountsTheSolidWhereItIsAtTheFramesTime) {
-  // The box starts 1 m away and arrives at t = 0.2 s with its +x face 0.01 m from the particle.
+  // The box starts 1 m away and arrives at t = 0.2 s with its +x face 0.01 m from the particle, which
+  // sits in a wet gap: a resting lattice of water (spacing 0.04 m) starts 0.01 m on its other side.
   const Solid box = box_keyframed(Vec3f::Constant(-0.1f), Vec3f::Constant(0.1f), {0.0, 0.2},
                                   {Vec3f(-1, 0, 0), Vec3f(0.1f, 0, 0)});
   DiffuseSimulator sim(still_air_setup(box));
@@ -113,18 +114,19 @@ TEST(DiffuseMovingSolids, ClassificationCountsTheSolidWhereItIsAtTheFramesTime) 
   one.lifetimes[0] = 100.0f;
   one.ids[0] = 0;
   sim.set_particles(one);
-  // The solid's share at distance d = 0.01 from a flat face: the cap of the h-sphere beyond it,
-  // pi (h - d)^2 (2h + d) / 3, in fluid particles of volume (2r)^3: 13.6, between 6 and 20: foam.
-  const double h = 0.08, d = 0.01, share = std::numbers::pi * (h - d) * (h - d) * (2 * h + d) / 3 / std::pow(0.04, 3);
-  ASSERT_GT(share, 7.0);   // past the spray limit plus the hysteresis
-  ASSERT_LT(share, 20.0);  // and short of a bubble
-  const auto fluid = distant_fluid(12);
+  // Within h = 0.08 of the particle: 9 lattice points in the plane x = 0.22 (i^2 + k^2 <= 3.94 in
+  // spacings) and 9 in x = 0.26 (<= 2.43): 18, foam. The box's face 0.01 m away covers the cap
+  // (h - d)^2 (2h + d) / (4 h^3) = 0.4067 of the ball, so the wet wall makes 18 / 0.5933 = 30.3: a bubble.
+  const auto water = testing::lattice(Vec3f(0.22f, -0.32f, -0.32f), Vec3f(0.5f, 0.32f, 0.32f), 0.04f);
+  std::vector<FluidFrame> fluid;
+  for (int k = 0; k < 12; ++k)
+    fluid.push_back(testing::frame_of(k, k / kFps, water, std::vector<Vec3f>(water.size(), Vec3f::Zero())));
   std::vector<DiffuseType> types;
   for (int k = 0; k + 1 < int(fluid.size()); ++k)
     sim.process_frame(fluid[k], &fluid[k + 1],
                       [&](const DiffuseFrame& f, const FrameStats&) { types.push_back(f.types[0]); });
-  EXPECT_EQ(types[0], DiffuseType::Spray);   // the box is 1 m away
-  EXPECT_EQ(types[10], DiffuseType::Foam);   // t = 0.2: the box's face is 0.01 m away
+  EXPECT_EQ(types[0], DiffuseType::Foam);     // the box is 1 m away
+  EXPECT_EQ(types[10], DiffuseType::Bubble);  // t = 0.2: the box's face is 0.01 m away
   EXPECT_EQ(sim.particles().positions[0], Vec3f(0.21f, 0, 0));  // never touched
 }
 

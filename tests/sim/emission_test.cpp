@@ -34,7 +34,7 @@ TEST(CylinderSampling, RadialAzimuthalAndAxialDistributionsAreUniformOverTheCyli
   for (int i = 0; i < n; ++i) {
     const auto u = random_uniform4({11, RandomPurpose::CylinderSample, 0, uint64_t(i), 0});
     Vec3f x, v;
-    sample_cylinder(x_f, v_f, dt, radius, u, x, v);
+    sample_cylinder(x_f, v_f, v_f, dt, radius, u, x, v);
     const Vec3f d = x - x_f;
     const float l = d.dot(axis);
     const Vec3f perp = d - l * axis;
@@ -55,7 +55,7 @@ TEST(CylinderSampling, RadialAzimuthalAndAxialDistributionsAreUniformOverTheCyli
 
 TEST(CylinderSampling, RestingParticleSamplesADiscWithoutNaN) {
   Vec3f x, v;
-  sample_cylinder(Vec3f(1, 1, 1), Vec3f::Zero(), 0.02f, 0.1f, {0.5f, 0.25f, 0.9f, 0.0f}, x, v);
+  sample_cylinder(Vec3f(1, 1, 1), Vec3f::Zero(), Vec3f::Zero(), 0.02f, 0.1f, {0.5f, 0.25f, 0.9f, 0.0f}, x, v);
   EXPECT_TRUE(finite(x) && finite(v));
   EXPECT_NEAR((x - Vec3f(1, 1, 1)).norm(), 0.1f * std::sqrt(0.5f), 1e-6);
 }

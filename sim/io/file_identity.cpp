@@ -1,0 +1,34 @@
+#include "file_identity.h"
+
+#include <sys/stat.h>
+
+#include <cerrno>
+#include <cstring>
+#include <ctime>
+
+#include "core/error.h"
+
+namespace spume {
+
+std::string FileIdentity::text() const {
+  const std::time_t seconds = std::time_t(mtime_ns / 1000000000);
+  std::tm utc{};
+  gmtime_r(&seconds, &utc);
+  char when[64];
+  std::strftime(when, sizeof when, "%Y-%m-%d %H:%M:%S", &utc);
+  char nanos[16];
+  std::snprintf(nanos, sizeof nanos, ".%09lld", static_cast<long long>(mtime_ns % 1000000000));
+  return str(size, " bytes, modified ", when, nanos, " UTC");
+}
+
+FileIdentity file_identity(const std::filesystem::path& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) fail(path.string(), ": cannot read the file's status (", std::strerror(errno), ")");
+  if (!S_ISREG(st.st_mode)) fail(path.string(), ": not a regular file");
+  FileIdentity id;
+  id.size = uint64_t(st.st_size);
+  id.mtime_ns = int64_t(st.st_mtim.tv_sec) * 1000000000 + int64_t(st.st_mtim.tv_nsec);
+  return id;
+}
+
+}  // namespace spume

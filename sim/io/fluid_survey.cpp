@@ -1,0 +1,187 @@
+#include "fluid_survey.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/parallel.h"
+#include "core/progress.h"
+#include "io/frame_pattern.h"
+#include "io/particle_file.h"
+
+namespace spume {
+namespace {
+
+using Json = nlohmann::json;
+
+Json to_json(const FrameSurvey& f) {
+  return {{"frame", f.frame},
+          {"size", f.file.size},
+          {"mtime_ns", f.file.mtime_ns},
+          {"particles", f.particles},
+          {"min", {f.bounds.min.x(), f.bounds.min.y(), f.bounds.min.z()}},
+          {"max", {f.bounds.max.x(), f.bounds.max.y(), f.bounds.max.z()}},
+          {"pressed", f.pressed}};
+}
+
+FrameSurvey frame_from_json(const Json& j) {
+  FrameSurvey f;
+  f.frame = j.at("frame").get<int>();
+  f.file.size = j.at("size").get<uint64_t>();
+  f.file.mtime_ns = j.at("mtime_ns").get<int64_t>();
+  f.particles = j.at("particles").get<uint64_t>();
+  for (int a = 0; a < 3; ++a) f.bounds.min[a] = j.at("min").at(size_t(a)).get<float>();
+  for (int a = 0; a < 3; ++a) f.bounds.max[a] = j.at("max").at(size_t(a)).get<float>();
+  f.pressed = j.at("pressed").get<std::array<uint64_t, 6>>();
+  return f;
+}
+
+// What an earlier survey of the same pattern and layer recorded, by frame; nothing when the file is
+// missing, unreadable or of another pattern (it is only a shortcut: surveying again is always right).
+struct Kept {
+  std::vector<FrameSurvey> frames;
+  float spacing = 0.0f;
+  int spacing_frame = -1;
+  FileIdentity spacing_file;
+};
+
+Kept read_kept(const std::filesystem::path& keep, const std::string& pattern, float layer) {
+  Kept kept;
+  if (keep.empty()) return kept;
+  std::ifstream in(keep);
+  if (!in) return kept;
+  try {
+    const Json j = Json::parse(in);
+    if (j.at("pattern").get<std::string>() != pattern || j.at("layer").get<float>() != layer) return kept;
+    for (const Json& f : j.at("frames")) kept.frames.push_back(frame_from_json(f));
+    kept.spacing = j.at("spacing").get<float>();
+    kept.spacing_frame = j.at("spacing_frame").get<int>();
+    kept.spacing_file = {j.at("spacing_size").get<uint64_t>(), j.at("spacing_mtime_ns").get<int64_t>()};
+  } catch (const std::exception&) {
+    return Kept{};
+  }
+  return kept;
+}
+
+}  // namespace
+
+Aabb FluidSurvey::bounds() const {
+  Aabb box;
+  for (const FrameSurvey& f : frames) box.extend(f.bounds);
+  return box;
+}
+
+FrameSurvey survey_positions(const std::vector<Vec3f>& positions, float layer) {
+  FrameSurvey f;
+  f.particles = positions.size();
+  for (const Vec3f& p : positions) f.bounds.extend(p);
+  for (const Vec3f& p : positions)
+    for (int a = 0; a < 3; ++a) {
+      f.pressed[size_t(2 * a)] += p[a] <= f.bounds.min[a] + layer;
+      f.pressed[size_t(2 * a + 1)] += p[a] >= f.bounds.max[a] - layer;
+    }
+  return f;
+}
+
+float median_spacing(const std::vector<Vec3f>& positions, size_t samples) {
+  const size_t n = positions.size();
+  if (n < 2) return 0.0f;
+  const size_t count = std::min(samples, n), stride = n / count;
+  std::vector<float> nearest(count);
+  parallel_for(count, 8, [&](size_t b, size_t e) {
+    for (size_t k = b; k < e; ++k) {
+      const size_t i = k * stride;
+      float best = INFINITY;
+      for (size_t j = 0; j < n; ++j)
+        if (j != i) best = std::min(best, (positions[j] - positions[i]).squaredNorm());
+      nearest[k] = std::sqrt(best);
+    }
+  });
+  std::nth_element(nearest.begin(), nearest.begin() + count / 2, nearest.end());
+  return nearest[count / 2];
+}
+
+FluidSurvey survey_fluid_files(const std::string& pattern, const std::vector<int>& frames, float layer,
+                               const std::filesystem::path& keep, bool quiet) {
+  if (frames.empty()) fail(pattern, ": no frames to survey");
+  FluidSurvey survey;
+  survey.pattern = pattern;
+  survey.layer = layer;
+  survey.frames.resize(frames.size());
+  const Kept kept = read_kept(keep, pattern, layer);
+
+  std::vector<size_t> todo;
+  for (size_t k = 0; k < frames.size(); ++k) {
+    const std::string path = expand_frame_pattern(pattern, frames[k]);
+    const FileIdentity id = file_identity(path);
+    auto it = std::find_if(kept.frames.begin(), kept.frames.end(),
+                           [&](const FrameSurvey& f) { return f.frame == frames[k]; });
+    if (it != kept.frames.end() && it->file == id) {
+      survey.frames[k] = *it;
+    } else {
+      survey.frames[k].frame = frames[k];
+      survey.frames[k].file = id;
+      todo.push_back(k);
+    }
+  }
+  const FileIdentity first_file = survey.frames.front().file;
+  const bool spacing_known = kept.spacing_frame == frames.front() && kept.spacing_file == first_file;
+  if (todo.empty() && spacing_known) {
+    survey.spacing = kept.spacing;
+    return survey;
+  }
+
+  // Frames are independent: read them in parallel, each written by its own task.
+  Progress progress("survey fluid", todo.size(), quiet || todo.size() < 8);
+  progress.message(str("surveying ", todo.size(), " fluid frames (bounds for the domain and camera)"));
+  std::vector<std::string> errors(todo.size());
+  parallel_for(todo.size(), 1, [&](size_t b, size_t e) {
+    for (size_t t = b; t < e; ++t) {
+      FrameSurvey& f = survey.frames[todo[t]];
+      const std::string path = expand_frame_pattern(pattern, f.frame);
+      try {
+        const FluidFrame frame = read_fluid_file(path);
+        const FileIdentity id = f.file;
+        f = survey_positions(frame.positions, layer);
+        f.frame = frames[todo[t]];
+        f.file = id;
+      } catch (const Error& error) {
+        errors[t] = str("frame ", f.frame, ": ", error.what());
+      }
+    }
+  });
+  for (const std::string& e : errors)
+    if (!e.empty()) throw Error(e);
+  progress.finish(str(todo.size(), " frames read"));
+  if (spacing_known) {
+    survey.spacing = kept.spacing;
+  } else {
+    const FluidFrame first = read_fluid_file(expand_frame_pattern(pattern, frames.front()));
+    survey.spacing = median_spacing(first.positions);
+  }
+
+  if (!keep.empty()) {
+    Json j = {{"pattern", pattern},
+              {"layer", layer},
+              {"spacing", survey.spacing},
+              {"spacing_frame", frames.front()},
+              {"spacing_size", first_file.size},
+              {"spacing_mtime_ns", first_file.mtime_ns},
+              {"frames", Json::array()}};
+    // Keep what was known of frames outside this range too, so other ranges stay cheap.
+    std::vector<FrameSurvey> all = survey.frames;
+    for (const FrameSurvey& f : kept.frames)
+      if (!std::binary_search(frames.begin(), frames.end(), f.frame)) all.push_back(f);
+    std::sort(all.begin(), all.end(), [](const FrameSurvey& a, const FrameSurvey& b) { return a.frame < b.frame; });
+    for (const FrameSurvey& f : all) j["frames"].push_back(to_json(f));
+    write_file_atomically(keep, [&](std::ostream& out) { out << j.dump() << '\n'; });
+  }
+  return survey;
+}
+
+}  // namespace spume

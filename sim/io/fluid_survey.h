@@ -1,0 +1,49 @@
+#pragma once
+// What a fluid sequence holds, frame by frame, without keeping the frames: each input file's identity,
+// its particle count and bounds, and how many particles press against each side of those bounds.
+// The whole sequence's domain and camera, the container inferred from it, the inputs' part of the
+// caches' fingerprints and the spacing check all read this one pass. It is kept beside the outputs
+// (OUT/<scene>/fluid_survey.json): a rerun surveys again only the files whose identity changed.
+#include <array>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/vec.h"
+#include "io/file_identity.h"
+
+namespace spume {
+
+struct FrameSurvey {
+  int frame = 0;
+  FileIdentity file;
+  uint64_t particles = 0;
+  Aabb bounds;
+  // Particles within `layer` of each side of the bounds: -x, +x, -y, +y, -z, +z. A sheet of them
+  // says the fluid presses against something flat there.
+  std::array<uint64_t, 6> pressed{};
+};
+
+struct FluidSurvey {
+  std::string pattern;
+  float layer = 0.0f;             // m: how close to a side counts as pressing against it
+  std::vector<FrameSurvey> frames;  // in frame order
+  // Median distance from a particle to its nearest neighbour in the first frame (a sample of up to
+  // 512 particles): the cache's particle spacing, to check the radius the user gave against.
+  float spacing = 0.0f;
+  Aabb bounds() const;            // union over every frame
+};
+
+// Surveys `frames` of `pattern` (they must exist), reusing what `keep` records for files whose
+// identity is unchanged, and rewrites `keep` (atomically) when anything was surveyed. `keep` may be
+// empty: nothing is read or written. Frames are read in parallel. Progress on stderr unless quiet.
+FluidSurvey survey_fluid_files(const std::string& pattern, const std::vector<int>& frames, float layer,
+                               const std::filesystem::path& keep, bool quiet);
+
+// One frame's entry from particle positions (exposed for tests).
+FrameSurvey survey_positions(const std::vector<Vec3f>& positions, float layer);
+// Median nearest-neighbour distance over up to `samples` evenly strided particles.
+float median_spacing(const std::vector<Vec3f>& positions, size_t samples = 512);
+
+}  // namespace spume

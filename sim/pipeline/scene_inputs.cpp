@@ -1,0 +1,85 @@
+#include "scene_inputs.h"
+
+#include <cstdio>
+
+#include "core/error.h"
+#include "io/frame_pattern.h"
+#include "pipeline/fluid_stage.h"
+#include "scene/container.h"
+
+namespace spume {
+namespace {
+
+std::string describe_box(const Aabb& b) {
+  return str("[", b.min.x(), ", ", b.min.y(), ", ", b.min.z(), "] - [", b.max.x(), ", ", b.max.y(), ", ", b.max.z(),
+             "]");
+}
+
+int up_axis(const Vec3f& gravity) {
+  int up = 1;
+  if (gravity.norm() > 0.0f) gravity.cwiseAbs().maxCoeff(&up);
+  return up;
+}
+
+}  // namespace
+
+std::string spacing_warning(float particle_radius, float measured_spacing) {
+  if (!(measured_spacing > 0.0f)) return "";
+  const float ratio = measured_spacing / (2.0f * particle_radius);
+  if (ratio > 0.67f && ratio < 1.5f) return "";
+  return str("warning: fluid.radius ", particle_radius, " m implies a particle spacing of ", 2.0f * particle_radius,
+             " m, but the fluid's particles lie ", measured_spacing, " m from their nearest neighbour (",
+             ratio, " times that); neighbour counts, thresholds and the emission will be wrong. Set fluid.radius "
+             "(--radius) to about ", 0.5f * measured_spacing, " m");
+}
+
+SceneInputs read_scene_inputs(const SimScene& scene, const std::filesystem::path& out_root, bool quiet) {
+  SceneInputs in;
+  const std::filesystem::path scene_out = out_root / scene.name;
+  const bool solver = scene.source == FluidSourceKind::Solver;
+  const std::string pattern = solver ? fluid_cache_pattern(scene_out) : scene.file_pattern;
+  std::vector<int> frames;
+  for (int f : find_pattern_frames(pattern))
+    if (!scene.frames || (f >= scene.frames->first && f <= scene.frames->second)) frames.push_back(f);
+  if (frames.empty())
+    fail(pattern, ": no fluid frames", scene.frames ? str(" within frames ", scene.frames->first, "-",
+                                                           scene.frames->second) : std::string());
+  std::error_code ec;
+  std::filesystem::create_directories(scene_out, ec);
+  in.survey = survey_fluid_files(pattern, frames, scene.fluid.particle_radius, scene_out / "fluid_survey.json", quiet);
+
+  in.solids = scene.solids;
+  if (scene.infer_container) {
+    const InferredContainer c = infer_container(in.survey, scene.fluid.particle_radius, up_axis(scene.gravity));
+    in.notes.push_back(c.summary);
+    if (!c.tank)
+      fail("solids: the tank to infer (\"infer\": true): ", c.summary, "; give the tank's min and max instead");
+    std::vector<Solid> solids = in.solids.solids();
+    solids.push_back(*c.tank);
+    in.solids = SolidSet(std::move(solids));
+  }
+  if (!solver) {
+    const std::string warning = spacing_warning(scene.fluid.particle_radius, in.survey.spacing);
+    if (!warning.empty()) in.notes.push_back(warning);
+  }
+
+  SimScene resolved = scene;
+  resolved.solids = in.solids;
+  if (!scene.domain.empty()) {
+    in.domain = scene.domain;
+  } else {
+    in.domain = default_domain(resolved, in.survey.bounds());
+    const bool tank = std::any_of(in.solids.solids().begin(), in.solids.solids().end(),
+                                  [](const Solid& s) { return s.kind == Solid::Kind::Tank; });
+    in.notes.push_back(str("domain (diffuse particles leaving it are deleted): ", describe_box(in.domain),
+                           tank ? ", the tank with its open top raised by its height"
+                                : str(", the fluid's bounds over all ", frames.size(),
+                                      " frames grown by their size on every side"),
+                           "; set domain.min and domain.max to change it"));
+  }
+  if (!quiet)
+    for (const std::string& note : in.notes) std::fprintf(stderr, "%s\n", note.c_str());
+  return in;
+}
+
+}  // namespace spume

@@ -1,0 +1,30 @@
+#pragma once
+// What the stages need to know of a scene's whole fluid sequence before they start: a survey of
+// every frame (io/fluid_survey.h; kept in OUT/<scene>/fluid_survey.json), the container when the
+// scene asks for it to be inferred, and the domain when the scene gives none. The simulation and the
+// render stage both start here, so the domain, the walls and the camera agree for every frame and
+// every farm chunk.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "io/fluid_survey.h"
+#include "scene/sim_scene.h"
+
+namespace spume {
+
+struct SceneInputs {
+  FluidSurvey survey;
+  SolidSet solids;   // the scene's, with the inferred tank added
+  Aabb domain;       // the scene's, else default_domain over the survey's bounds
+  std::vector<std::string> notes;  // what was derived, and warnings, one line each
+};
+
+// The fluid frames of the scene (its files, or the solver's caches under out_root, which must
+// exist), surveyed. Writes the notes to stderr unless quiet.
+SceneInputs read_scene_inputs(const SimScene& scene, const std::filesystem::path& out_root, bool quiet);
+
+// The warning for a radius that does not match the cache's spacing (2r expected), or "".
+std::string spacing_warning(float particle_radius, float measured_spacing);
+
+}  // namespace spume

@@ -1,0 +1,167 @@
+// Walls count only where they are wet (MODEL.md §8.10-11): classification, the surface test and
+// advection next to solids, on a resting pool in a tank worked out by hand.
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "diffuse/potentials.h"
+#include "diffuse/simulator.h"
+#include "scene/solid_coverage.h"
+#include "test_fluids.h"
+
+namespace spume {
+namespace {
+
+// A tank [0,1]^3 holding a resting pool 0.3 m deep: r = 0.02 m, lattice of spacing 2r from r off
+// each wall, h = 4r. A full neighbourhood holds 4/3 pi h^3 / (2r)^3 = 33.5 particles.
+constexpr float kR = 0.02f, kH = 0.08f, kDepth = 0.3f;
+const float kFull = 4.0f / 3.0f * std::numbers::pi_v<float> * 8.0f;
+
+std::vector<Vec3f> pool() { return testing::lattice(Vec3f(kR, kR, kR), Vec3f(1 - kR, kDepth, 1 - kR), 2 * kR); }
+
+SolidSet tank(bool open_top = true) {
+  Solid s;
+  s.kind = Solid::Kind::Tank;
+  s.min = Vec3f::Zero(), s.max = Vec3f::Ones(), s.open_top = open_top;
+  return SolidSet({s});
+}
+
+// The neighbour count classification uses: fluid within h by brute force, then the wet-wall scaling.
+float effective_count(const std::vector<Vec3f>& fluid, const SolidSet& solids, const Vec3f& p) {
+  float n = 0;
+  for (const Vec3f& f : fluid) n += (f - p).squaredNorm() <= kH * kH;
+  return wet_wall_count(n, solid_coverage(solids, p, kH, false).fraction);
+}
+
+// What a wet wall stands for: the fluid mirrored across the wall planes x = 0 and y = 0 (as `axes`
+// says), counted like any fluid.
+float mirrored_count(const std::vector<Vec3f>& fluid, const Vec3f& p, bool mirror_x, bool mirror_y) {
+  float n = 0;
+  for (const Vec3f& f : fluid)
+    for (int mx = 0; mx <= int(mirror_x); ++mx)
+      for (int my = 0; my <= int(mirror_y); ++my) {
+        const Vec3f g(mx ? -f.x() : f.x(), my ? -f.y() : f.y(), f.z());
+        n += (g - p).squaredNorm() <= kH * kH;
+      }
+  return n;
+}
+
+TEST(WetWalls, DryWallAddsNothingWaterlineAboutHalfSubmergedFloorAFullShare) {
+  const auto fluid = pool();
+  const SolidSet solids = tank();
+  EXPECT_EQ(effective_count(fluid, solids, {0.001f, 0.7f, 0.5f}), 0.0f);    // dry wall
+  EXPECT_EQ(effective_count(fluid, solids, {0.001f, 0.7f, 0.001f}), 0.0f);  // dry edge
+  // Submerged floor and edge: what the same point counts with water beyond the walls (the lattice
+  // itself makes that 28 here, against 33.5 on average).
+  const Vec3f floor(0.5f, 0.001f, 0.5f), edge(0.001f, 0.001f, 0.5f);
+  EXPECT_NEAR(effective_count(fluid, solids, floor), mirrored_count(fluid, floor, false, true), 0.05f * kFull);
+  EXPECT_NEAR(effective_count(fluid, solids, edge), mirrored_count(fluid, edge, true, true), 0.05f * kFull);
+  // Waterline: water beyond the wall only below the surface, so about half a neighbourhood.
+  const Vec3f waterline(0.001f, kDepth + kR, 0.5f);
+  const float at_waterline = effective_count(fluid, solids, waterline);
+  EXPECT_NEAR(at_waterline, mirrored_count(fluid, waterline, true, false), 0.05f * kFull);
+  EXPECT_NEAR(at_waterline, 0.5f * kFull, 0.2f * kFull);
+}
+
+DiffuseSetup setup(const SolidSet& solids) {
+  DiffuseSetup s;
+  s.fluid.particle_radius = kR;
+  s.fluid.support_radius = kH;
+  s.fluid.fps = 50.0;
+  s.solids = solids;
+  s.params.k_ta = s.params.k_wc = 0.0f;  // nothing is born: only the particles placed by hand
+  return s;
+}
+
+DiffuseFrame placed(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& velocities) {
+  DiffuseFrame d;
+  d.resize(positions.size());
+  for (size_t i = 0; i < positions.size(); ++i) {
+    d.ids[i] = diffuse_id(uint32_t(i), 5, 0);  // born long ago: hysteresis applies
+    d.positions[i] = positions[i];
+    d.velocities[i] = velocities[i];
+    d.lifetimes[i] = 2.0f;
+    d.types[i] = DiffuseType::Foam;  // what a dry wall used to make of them
+  }
+  return d;
+}
+
+TEST(WetWalls, DryEdgesAndCornersAreSprayNotBubbles) {
+  const SolidSet solids = tank(false);
+  DiffuseSimulator sim(setup(solids));
+  const std::vector<Vec3f> at = {{0.001f, 0.7f, 0.5f},      // dry wall
+                                 {0.001f, 0.7f, 0.001f},    // dry vertical edge
+                                 {0.5f, 0.999f, 0.001f},    // dry edge under the lid
+                                 {0.001f, 0.999f, 0.001f},  // dry corner under the lid
+                                 {0.5f, 0.001f, 0.5f},      // submerged floor
+                                 {0.001f, 0.001f, 0.001f},  // submerged corner
+                                 {0.5f, kDepth + kR, 0.001f}};  // waterline
+  sim.set_particles(placed(at, std::vector<Vec3f>(at.size(), Vec3f::Zero())));
+  const FluidFrame fluid = testing::frame_of(0, 0.0, pool(), std::vector<Vec3f>(pool().size(), Vec3f::Zero()));
+  std::vector<DiffuseType> types;
+  sim.process_frame(fluid, nullptr, [&](const DiffuseFrame& f, const FrameStats&) { types = f.types; });
+  ASSERT_EQ(types.size(), at.size());
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(types[size_t(i)], DiffuseType::Spray) << i;
+  EXPECT_EQ(types[4], DiffuseType::Bubble);
+  EXPECT_EQ(types[5], DiffuseType::Bubble);
+  EXPECT_EQ(types[6], DiffuseType::Foam);
+}
+
+TEST(WetWalls, SprayThrownAtADryWallStaysSprayAndFalls) {
+  const SolidSet solids = tank();
+  DiffuseSimulator sim(setup(solids));
+  sim.set_particles(placed({{0.2f, 0.8f, 0.5f}}, {{-3.0f, 0.0f, 0.0f}}));
+  const auto fluid = pool();
+  const std::vector<Vec3f> still(fluid.size(), Vec3f::Zero());
+  std::vector<DiffuseFrame> out;
+  const int frames = 11;  // 0.2 s: it reaches the wall after 0.067 s
+  std::vector<FluidFrame> seq;
+  for (int k = 0; k < frames; ++k) seq.push_back(testing::frame_of(k, k / 50.0, fluid, still));
+  for (int k = 0; k < frames; ++k)
+    sim.process_frame(seq[size_t(k)], k + 1 < frames ? &seq[size_t(k) + 1] : nullptr,
+                      [&](const DiffuseFrame& f, const FrameStats&) { out.push_back(f); });
+  for (int k = 1; k < frames; ++k) {
+    ASSERT_EQ(out[size_t(k)].size(), 1u);
+    EXPECT_EQ(out[size_t(k)].types[0], DiffuseType::Spray) << k;
+    EXPECT_GE(out[size_t(k)].positions[0].x(), 0.0f);
+  }
+  // Free fall for 0.2 s: 0.8 - g t^2 / 2 = 0.604 m, its wall contact notwithstanding.
+  EXPECT_NEAR(out.back().positions[0].y(), 0.8f - 0.5f * 9.81f * 0.04f, 1e-3f);
+  EXPECT_NEAR(out.back().positions[0].x(), 0.0f, 1e-3f);
+}
+
+TEST(WetWalls, TheLayerAgainstAWallIsInteriorAndTheWaterlineFacesUp) {
+  const auto fluid = pool();
+  const auto state = testing::state_of(fluid, std::vector<Vec3f>(fluid.size(), Vec3f::Zero()));
+  NeighbourGrid grid;
+  grid.build(state.positions, kH);
+  DiffuseParams params;
+  const SolidSet solids = tank();
+  std::vector<Vec3f> with_walls, without;
+  compute_normals(grid, 8 * kR * kR * kR, params, &solids, with_walls);
+  compute_normals(grid, 8 * kR * kR * kR, params, nullptr, without);
+  int wall_layer = 0, blind_surface = 0, waterline = 0;
+  for (size_t i = 0; i < fluid.size(); ++i) {
+    const Vec3f& p = fluid[i];
+    const bool at_wall = p.x() < 2 * kR || p.z() < 2 * kR || p.y() < 2 * kR;
+    const bool top = p.y() > kDepth - kR;
+    if (at_wall && !top && p.y() < kDepth - 3 * kR) {
+      ++wall_layer;
+      blind_surface += without[i].squaredNorm() > 0;  // without walls the layer looks like a surface
+      EXPECT_EQ(with_walls[i], Vec3f::Zero()) << p.transpose();
+    }
+    if (top) {
+      ASSERT_GT(with_walls[i].squaredNorm(), 0) << p.transpose();
+      const int walls = (p.x() < 2 * kR || p.x() > 1 - 2 * kR) + (p.z() < 2 * kR || p.z() > 1 - 2 * kR);
+      // Up within 20 degrees along a wall, 30 in a corner (two walls lean it).
+      EXPECT_GT(with_walls[i].y(), walls < 2 ? 0.94f : 0.86f) << p.transpose();
+      waterline += walls == 1;
+    }
+  }
+  EXPECT_GT(wall_layer, 500);
+  EXPECT_GT(blind_surface, wall_layer / 2);
+  EXPECT_GT(waterline, 20);
+}
+
+}  // namespace
+}  // namespace spume
