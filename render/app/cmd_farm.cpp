@@ -50,8 +50,8 @@ struct Plan {
   int frames = 0;
 };
 
-// Loads the scene, splits its frames into chunks, and clears the frames folder once here when the
-// render keys changed, so that tasks starting together never delete each other's frames.
+// Loads the scene and splits its frames into chunks. Tasks never delete frames: each renders the
+// frames of its chunk whose records do not match (render_stage.h).
 Plan plan(const cli::ParsedArgs& args, const std::vector<cli::OptionSpec>& options, const std::string& command) {
   Plan p;
   p.setup = load_scene_setup(args, options, command);
@@ -61,8 +61,6 @@ Plan plan(const cli::ParsedArgs& args, const std::vector<cli::OptionSpec>& optio
   if (auto spec = args.value("frames")) frames = farm::select_frames(*spec, frames);
   p.frames = int(frames.size());
   p.chunks = farm::chunk_specs(frames, cli::parse_int(*chunk, "--chunk", 1, 1 << 30));
-  reset_stale_frames((p.setup.out_root / p.setup.sim.name / p.setup.render.frame_pattern).string(),
-                     p.setup.render_fingerprint);
   return p;
 }
 

@@ -89,6 +89,7 @@ int command_lookdev(const std::vector<std::string>& raw) {
       output = args.has("output") ? std::filesystem::path(*args.value("output"))
                                   : prepared.scene_out / "lookdev" / str("lookdev_", frame, ".png");
     }
+    check_diffuse_caches(prepared, {frame});
     const LoadedFrame loaded = load_frame(prepared, frame);
     FrameRenderer renderer(prepared.settings);
     tiles.push_back({renderer.render(loaded.inputs()), combos[c]});

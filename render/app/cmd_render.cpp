@@ -36,7 +36,10 @@ void report(const char* what, bool ran, bool quiet) {
 
 void finish_render(const RenderStageSummary& s, const cli::ParsedArgs& args, const SceneSetup& setup) {
   if (!setup.quiet) {
-    std::fprintf(stderr, "render: %d frames written, %d already on disk, %.1f s\n", s.written, s.skipped, s.seconds);
+    std::fprintf(stderr, "render: %d frames written, %d current on disk, %.1f s\n", s.written, s.skipped, s.seconds);
+    if (s.stale_elsewhere > 0)
+      std::fprintf(stderr, "render: %d other frames on disk are stale for the current keys or caches (not rendered: "
+                   "outside --frames)\n", s.stale_elsewhere);
     for (const auto& stage : s.stages) std::fprintf(stderr, "  ran: %s\n", stage.c_str());
   }
   if (args.has("movie") && s.first_frame_number >= 0) {
@@ -54,7 +57,7 @@ int command_render(const std::vector<std::string>& raw) {
   const auto options = render_options();
   const cli::ParsedArgs args = cli::parse(raw, options, "render");
   const SceneSetup setup = load_scene_setup(args, options, "render");
-  finish_render(run_render_stage(setup.sim, setup.render, setup.render_fingerprint, stage_options(args, setup)), args,
+  finish_render(run_render_stage(setup.sim, setup.render, setup.render_keys, stage_options(args, setup)), args,
                 setup);
   return 0;
 }
@@ -79,7 +82,7 @@ int command_run(const std::vector<std::string>& raw) {
     report("diffuse simulation", diffuse && !simulated.diffuse.reused, false);
   }
   const RenderStageSummary rendered =
-      run_render_stage(setup.sim, setup.render, setup.render_fingerprint, stage_options(args, setup));
+      run_render_stage(setup.sim, setup.render, setup.render_keys, stage_options(args, setup));
   finish_render(rendered, args, setup);
   return 0;
 }

@@ -12,37 +12,29 @@
 #include "io/frame_pattern.h"
 #include "io/spume_cache.h"
 #include "pipeline/body_track_file.h"
-#include "pipeline/cache_state.h"
+#include "io/file_identity.h"
+#include "io/stage_record.h"
 #include "pipeline/frame_renderer.h"
 #include "pipeline/simulate_run.h"
+#include "pipeline/scene_inputs.h"
 #include "pipeline/simulate_scene.h"
 #include "solid_meshes.h"
 
 namespace spume {
 namespace {
 
-bool valid_frame_on_disk(const std::filesystem::path& path, const RenderSettings& s) {
-  if (!std::filesystem::is_regular_file(path)) return false;
-  try {
-    const ImageRGB8 image = read_png(path);
-    return image.width == s.width && image.height == s.height;
-  } catch (const Error&) {
-    return false;
-  }
-}
-
-// Bounds of what the camera should see when the scene sets no camera: the tanks and the fluid.
-Aabb scene_bounds(const SimScene& scene, const FluidFrame& first) {
-  Aabb box;
-  for (const Solid& s : scene.solids.solids())
+// Bounds of what the camera should see when the scene sets no camera: the tanks and the fluid over
+// the whole sequence (a dam break stays in the picture from its first frame to its last).
+Aabb scene_bounds(const SolidSet& solids, const FluidSurvey& survey) {
+  Aabb box = survey.bounds();
+  for (const Solid& s : solids.solids())
     if (s.kind == Solid::Kind::Tank) box.extend(Aabb{s.min, s.max});
-  for (const Vec3f& p : first.positions) box.extend(p);
   return box;
 }
 
-float lowest_point(const SimScene& scene, const FluidFrame& first, int up) {
-  Aabb box = scene_bounds(scene, first);
-  for (const Solid& s : scene.solids.solids())
+float lowest_point(const SolidSet& solids, const FluidSurvey& survey, int up) {
+  Aabb box = scene_bounds(solids, survey);
+  for (const Solid& s : solids.solids())
     box.extend(s.kind == Solid::Kind::Sphere ? Aabb{s.center - Vec3f::Constant(s.radius),
                                                     s.center + Vec3f::Constant(s.radius)}
                                              : Aabb{s.min, s.max});
@@ -50,21 +42,7 @@ float lowest_point(const SimScene& scene, const FluidFrame& first, int up) {
   return box.min[up] - 1e-3f * extent;
 }
 
-void remove_pattern_frames(const std::string& pattern) {
-  std::error_code ec;
-  for (int f : find_pattern_frames(pattern)) std::filesystem::remove(expand_frame_pattern(pattern, f), ec);
-}
-
 }  // namespace
-
-std::filesystem::path reset_stale_frames(const std::string& pattern, const std::string& render_fingerprint) {
-  const std::filesystem::path frames_dir = std::filesystem::path(expand_frame_pattern(pattern, 0)).parent_path();
-  if (!cache_is_current(frames_dir, render_fingerprint, {})) {
-    if (std::filesystem::is_directory(frames_dir)) remove_pattern_frames(pattern);
-    mark_cache_complete(frames_dir, render_fingerprint);
-  }
-  return frames_dir;
-}
 
 PreparedRender prepare_render(const SimScene& scene, RenderSettings settings, const std::filesystem::path& out_root) {
   const Vec3f up = -scene.gravity.normalized();
@@ -73,22 +51,65 @@ PreparedRender prepare_render(const SimScene& scene, RenderSettings settings, co
   PreparedRender p;
   p.scene = &scene;
   p.scene_out = out_root / scene.name;
-  if (scene.source == FluidSourceKind::Solver &&
-      !cache_is_current(p.scene_out / "fluid", scene.fluid_fingerprint, {}))
-    fail((p.scene_out / "fluid").string(), ": no current fluid caches for this scene (missing, unfinished or made "
-         "with other fluid keys); run `spume simulate` or `spume run` first");
+  if (scene.source == FluidSourceKind::Solver) {
+    const std::optional<StageRecord> made = read_stage_record(p.scene_out / "fluid");
+    const RecordMatch match = fluid_caches_match(scene, out_root, made ? made->last_frame : 0);
+    if (!made || match.kind != RecordMatch::Kind::Current)
+      fail((p.scene_out / "fluid").string(), ": the fluid caches are not current for this scene (", match.why,
+           "); run `spume simulate` or `spume run` first");
+  }
   p.source = scene_fluid_source(scene, out_root);
   p.frames = diffuse_frames_to_run(scene, *p.source, SimulateOptions{});
   if (settings.draw_solids) p.bodies = scene_body_track(scene, p.scene_out);
 
-  const FluidFrame first = p.source->load(p.frames.front());
+  p.inputs = read_scene_inputs(scene, out_root, true);
+  const SceneInputs& inputs = p.inputs;
+  p.solids = inputs.solids;
+  std::vector<int> surveyed;
+  for (const FrameSurvey& f : inputs.survey.frames) surveyed.push_back(f.frame);
+  p.sequence_digest = record_digest(diffuse_stage_record(scene, inputs, surveyed, p.scene_out).to_json());
   if (settings.camera.empty())
-    settings.camera.push_back(auto_camera(scene_bounds(scene, first), up, 40.0f,
+    settings.camera.push_back(auto_camera(scene_bounds(p.solids, inputs.survey), up, 40.0f,
                                           float(settings.width) / float(settings.height)));
   settings.camera_up = up;
-  settings.environment.ground_height = settings.ground_height.value_or(lowest_point(scene, first, 1));
+  settings.environment.ground_height =
+      settings.ground_height.value_or(lowest_point(p.solids, inputs.survey, 1));
   p.settings = std::move(settings);
   return p;
+}
+
+void check_diffuse_caches(const PreparedRender& p, const std::vector<int>& frames) {
+  if (!p.settings.draws_diffuse() || frames.empty()) return;
+  const std::filesystem::path dir = p.scene_out / "diffuse";
+  const std::optional<StageRecord> made = read_stage_record(dir);
+  if (!made)
+    fail(dir.string(), ": no finished diffuse caches (never simulated, or a simulation was interrupted); run "
+         "`spume simulate` or `spume run` first");
+  // The caches may start later than the scene (simulate --frames A-B); they must reach every frame.
+  std::vector<int> range;
+  for (int f : p.frames)
+    if (f >= made->first_frame && f <= frames.back()) range.push_back(f);
+  if (frames.front() < made->first_frame || range.empty())
+    fail(dir.string(), ": the diffuse caches start at frame ", made->first_frame, ", after frame ", frames.front(),
+         "; run `spume simulate` for the frames to render");
+  const RecordMatch match = diffuse_caches_match(*p.scene, p.inputs, range, p.scene_out);
+  if (match.kind == RecordMatch::Kind::Prefix)
+    fail(dir.string(), ": the diffuse caches end at frame ", made->last_frame, ", before frame ", frames.back(),
+         "; run `spume simulate` (or `spume run`) for the frames to render");
+  if (match.kind == RecordMatch::Kind::Stale)
+    fail(dir.string(), ": the diffuse caches are not current for this scene: ", match.why,
+         "; run `spume simulate` (or `spume run`) first");
+}
+
+std::string frame_record(const PreparedRender& p, const nlohmann::json& render_keys, int frame) {
+  auto identity = [](const std::filesystem::path& path) {
+    const FileIdentity id = file_identity(path);
+    return nlohmann::json::array({id.size, id.mtime_ns, id.crc});
+  };
+  nlohmann::json record = {{"render", render_keys}, {"sequence", p.sequence_digest}};
+  if (p.settings.draws_diffuse()) record["diffuse"] = identity(diffuse_cache_path(p.scene_out, frame));
+  if (p.settings.draw_surface) record["fluid"] = identity(expand_frame_pattern(p.inputs.survey.pattern, frame));
+  return record.dump();
 }
 
 FrameInputs LoadedFrame::inputs() const {
@@ -116,14 +137,14 @@ LoadedFrame load_frame(PreparedRender& p, int f) {
     }
     if (p.settings.draw_solids) {
       Camera camera = camera_at(p.settings.camera, frame.time, p.settings.width, p.settings.height);
-      frame.solids = solid_meshes(solids_at_time(p.scene->solids, p.bodies, frame.time), camera.position);
+      frame.solids = solid_meshes(solids_at_time(p.solids, p.bodies, frame.time), camera.position);
     }
     return frame;
   });
 }
 
 RenderStageSummary run_render_stage(const SimScene& scene, RenderSettings settings_in,
-                                    const std::string& render_fingerprint, const RenderStageOptions& options) {
+                                    const nlohmann::json& render_keys, const RenderStageOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   PreparedRender prepared = prepare_render(scene, std::move(settings_in), options.out_root);
   const RenderSettings& settings = prepared.settings;
@@ -137,8 +158,8 @@ RenderStageSummary run_render_stage(const SimScene& scene, RenderSettings settin
   }
   RenderStageSummary summary;
   if (frames.empty()) return summary;
-
-  const std::filesystem::path frames_dir = reset_stale_frames(pattern, render_fingerprint);
+  check_diffuse_caches(prepared, frames);
+  const std::filesystem::path frames_dir = std::filesystem::path(expand_frame_pattern(pattern, 0)).parent_path();
 
   FrameRenderer renderer(settings);
   Progress progress("render " + scene.name, frames.size(), options.quiet);
@@ -148,16 +169,18 @@ RenderStageSummary run_render_stage(const SimScene& scene, RenderSettings settin
     const int f = frames[k];
     const std::filesystem::path path = expand_frame_pattern(pattern, f);
     if (summary.first_frame.empty()) summary.first_frame = path, summary.first_frame_number = f;
-    if (!options.overwrite && valid_frame_on_disk(path, settings)) {
+    // A frame on disk is kept only when it records exactly what this render would make it from.
+    const std::string record = frame_record(prepared, render_keys, f);
+    if (!options.overwrite && read_png_record(path) == record) {
       ++summary.skipped;
-      progress.update(k + 1, "exists, skipped");
+      progress.update(k + 1, "current, skipped");
       continue;
     }
     const LoadedFrame frame = load_frame(prepared, f);  // its errors name the frame
     with_context(str("frame ", f), [&] {
       FrameReport report;
       const ImageRGB8 image = renderer.render(frame.inputs(), &report);
-      write_png(path, image);
+      write_png(path, image, record);
       any_reconstructed |= report.reconstructed;
       any_gl |= report.used_gl;
       any_volume |= report.volume;
@@ -168,6 +191,15 @@ RenderStageSummary run_render_stage(const SimScene& scene, RenderSettings settin
       if (!options.quiet) std::printf("Saved: %s\n", path.string().c_str()), std::fflush(stdout);
       progress.update(k + 1, str(report.triangles, " triangles, ", report.spheres, " diffuse spheres"));
     });
+  }
+  // Frames of the sequence left out of this render that no longer match the scene.
+  for (int f : available) {
+    if (std::binary_search(frames.begin(), frames.end(), f)) continue;
+    const std::filesystem::path path = expand_frame_pattern(pattern, f);
+    if (!std::filesystem::exists(path)) continue;
+    const bool current = (!settings.draws_diffuse() || std::filesystem::exists(diffuse_cache_path(prepared.scene_out, f))) &&
+                         read_png_record(path) == frame_record(prepared, render_keys, f);
+    summary.stale_elsewhere += !current;
   }
   const auto per_frame = [&](double seconds) {
     return str(" (", int(std::lround(1e3 * seconds / std::max(summary.written, 1))), " ms per frame)");

@@ -3,10 +3,12 @@
 // solids at the frame's time -> OUT/<scene>/<render.frames pattern>, 8-bit sRGB PNG written
 // atomically. It reads caches only and never simulates.
 //
-// Resuming: the frames folder records the render fingerprint (the scene's diffuse fingerprint and
-// every render key). When it matches, frames already on disk that decode at the right size are
-// skipped (unless overwrite); when it differs, the old frames of the pattern are deleted first, so a
-// folder never mixes frames of different settings.
+// Frames know their sources: each PNG records (in a text chunk, written atomically with the pixels)
+// the render keys, a digest of the whole sequence's inputs and simulation keys, and the identity of
+// the diffuse cache and fluid file it was drawn from. A frame on disk is skipped only when its record
+// equals what this render would write (unless overwrite); frames outside the render's selection are
+// never touched, and the summary counts those that are stale. The stage refuses caches that are not
+// current for the scene (missing, unfinished, or made from other keys or inputs), naming why.
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -15,6 +17,7 @@
 
 #include "pipeline/frame_renderer.h"
 #include "pipeline/render_settings.h"
+#include "pipeline/scene_inputs.h"
 #include "scene/body_track.h"
 #include "scene/fluid_source.h"
 #include "scene/sim_scene.h"
@@ -32,6 +35,7 @@ struct RenderStageOptions {
 
 struct RenderStageSummary {
   int written = 0, skipped = 0;
+  int stale_elsewhere = 0;  // frames on disk outside the selection that do not match the scene now
   double seconds = 0.0;
   std::vector<std::string> stages;  // what ran, e.g. "surface reconstruction", "OSMesa surface pass"
   std::filesystem::path first_frame;  // the first frame written or found
@@ -39,7 +43,7 @@ struct RenderStageSummary {
 };
 
 // A scene ready to render from its caches: the fluid source, the frames it has, and the settings
-// with the camera framed and the ground placed (from the sequence's first frame, so every farm chunk
+// with the camera framed and the ground placed (from the whole sequence's bounds, so every farm chunk
 // agrees). Throws when a solver scene has no current fluid caches.
 struct PreparedRender {
   const SimScene* scene = nullptr;
@@ -48,6 +52,9 @@ struct PreparedRender {
   std::unique_ptr<FluidSource> source;
   std::vector<int> frames;          // available, sorted
   BodyTrack bodies;                 // the dynamic solids' poses (scenes with dynamic solids)
+  SolidSet solids;                  // the scene's, with an inferred tank (pipeline/scene_inputs.h)
+  SceneInputs inputs;               // the survey of the whole sequence, the domain
+  std::string sequence_digest;      // of the simulation keys and every input file (frame records)
 };
 PreparedRender prepare_render(const SimScene& scene, RenderSettings settings, const std::filesystem::path& out_root);
 
@@ -64,12 +71,15 @@ struct LoadedFrame {
 };
 LoadedFrame load_frame(PreparedRender& prepared, int frame);
 
-// The resume rule above on its own: when the frames folder of `pattern` records another fingerprint,
-// its frames are deleted and the new fingerprint recorded. Returns the folder. Farms call it once
-// before their tasks start, so no task deletes a frame another task has just written.
-std::filesystem::path reset_stale_frames(const std::string& pattern, const std::string& render_fingerprint);
+// Throws unless the diffuse caches (when the settings draw diffuse material) are finished, current
+// for the scene and hold `frames` (sorted).
+void check_diffuse_caches(const PreparedRender& prepared, const std::vector<int>& frames);
 
-RenderStageSummary run_render_stage(const SimScene& scene, RenderSettings settings,
-                                    const std::string& render_fingerprint, const RenderStageOptions& options);
+// What frame `frame` is drawn from, as stored in its PNG (compact JSON).
+std::string frame_record(const PreparedRender& prepared, const nlohmann::json& render_keys, int frame);
+
+// `render_keys`: the scene's "render" object as written (part of each frame's record).
+RenderStageSummary run_render_stage(const SimScene& scene, RenderSettings settings, const nlohmann::json& render_keys,
+                                    const RenderStageOptions& options);
 
 }  // namespace spume

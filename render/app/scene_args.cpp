@@ -59,7 +59,7 @@ SceneSetup load_scene_setup(const cli::ParsedArgs& args, const std::vector<cli::
   setup.sim = read_sim_scene(loaded.root, loaded.dir, loaded.default_name);
   setup.render = read_render_settings(loaded.root.child("render"), setup.sim.fluid.particle_radius);
   loaded.root.reject_unknown_keys();
-  setup.render_fingerprint = setup.sim.diffuse_fingerprint + "\nrender " + loaded.root.raw("render").dump();
+  setup.render_keys = loaded.root.raw("render");
   if (auto out = args.value("out")) setup.out_root = *out;
   setup.quiet = args.has("quiet");
   return setup;

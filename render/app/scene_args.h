@@ -18,7 +18,7 @@ std::vector<cli::OptionSpec> scene_command_options();
 struct SceneSetup {
   SimScene sim;
   RenderSettings render;
-  std::string render_fingerprint;  // diffuse fingerprint + every render key
+  Json render_keys;                // the scene's "render" object as written (frame records)
   std::filesystem::path out_root = "out";
   bool quiet = false;
 };

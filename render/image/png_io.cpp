@@ -6,12 +6,15 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <optional>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
 
 namespace spume {
 namespace {
+
+constexpr const char* kRecordKeyword = "spume";
 
 // libpng reports fatal errors by longjmp. The functions that call setjmp keep only trivially
 // destructible locals, and the C++ objects they fill belong to their callers, so a longjmp never
@@ -46,7 +49,8 @@ void write_bytes(png_structp png, png_bytep in, png_size_t n) {
 void flush_bytes(png_structp) {}
 
 // Returns false with status->message set on failure. `rows` must hold one pointer per row.
-bool encode_rows(const ImageRGB8& image, png_bytep* rows, std::vector<uint8_t>* out, PngStatus* status) {
+bool encode_rows(const ImageRGB8& image, png_bytep* rows, const std::string* record, std::vector<uint8_t>* out,
+                 PngStatus* status) {
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, status, on_error, on_warning);
   if (!png) return std::snprintf(status->message, sizeof status->message, "out of memory"), false;
   png_infop info = png_create_info_struct(png);
@@ -60,6 +64,15 @@ bool encode_rows(const ImageRGB8& image, png_bytep* rows, std::vector<uint8_t>* 
   png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
   // Level 3 is several times faster than the default 6 on 1080p frames for a few percent more bytes.
   png_set_compression_level(png, 3);
+  png_text text{};
+  if (record && !record->empty()) {
+    // Before the image data, so a reader finds it without decoding the pixels.
+    text.compression = PNG_TEXT_COMPRESSION_NONE;
+    text.key = const_cast<png_charp>(kRecordKeyword);
+    text.text = const_cast<png_charp>(record->c_str());
+    text.text_length = record->size();
+    png_set_text(png, info, &text, 1);
+  }
   png_write_info(png, info);
   png_write_image(png, rows);
   png_write_end(png, info);
@@ -104,7 +117,7 @@ bool decode_rows(MemoryReader* reader, DecodeTarget target, PngStatus* status) {
 
 }  // namespace
 
-std::vector<uint8_t> encode_png(const ImageRGB8& image) {
+std::vector<uint8_t> encode_png(const ImageRGB8& image, const std::string& record) {
   if (image.width <= 0 || image.height <= 0 || image.rgb.size() != image.pixel_count() * 3)
     fail("PNG encode: image is ", image.width, "x", image.height, " with ", image.rgb.size(), " bytes");
   std::vector<png_bytep> rows(size_t(image.height));
@@ -112,12 +125,12 @@ std::vector<uint8_t> encode_png(const ImageRGB8& image) {
   std::vector<uint8_t> out;
   out.reserve(image.rgb.size() / 4 + 1024);
   PngStatus status;
-  if (!encode_rows(image, rows.data(), &out, &status)) fail("PNG encode: ", status.message);
+  if (!encode_rows(image, rows.data(), &record, &out, &status)) fail("PNG encode: ", status.message);
   return out;
 }
 
-void write_png(const std::filesystem::path& path, const ImageRGB8& image) {
-  const std::vector<uint8_t> bytes = with_context(path.string(), [&] { return encode_png(image); });
+void write_png(const std::filesystem::path& path, const ImageRGB8& image, const std::string& record) {
+  const std::vector<uint8_t> bytes = with_context(path.string(), [&] { return encode_png(image, record); });
   write_file_atomically(path, [&](std::ostream& out) { out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size())); });
 }
 
@@ -137,6 +150,25 @@ ImageRGB8 read_png(const std::filesystem::path& path) {
   const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) fail(path.string(), ": read error");
   return decode_png(bytes.data(), bytes.size(), path.string());
+}
+
+std::optional<std::string> read_png_record(const std::filesystem::path& path) {
+  // Walk the chunks up to the image data: length (4 bytes, big-endian), type (4), data, CRC (4).
+  std::ifstream in(path, std::ios::binary);
+  unsigned char signature[8];
+  if (!in.read(reinterpret_cast<char*>(signature), 8) || png_sig_cmp(signature, 0, 8) != 0) return std::nullopt;
+  for (int chunks = 0; chunks < 64; ++chunks) {
+    unsigned char head[8];
+    if (!in.read(reinterpret_cast<char*>(head), 8)) return std::nullopt;
+    const uint32_t length = uint32_t(head[0]) << 24 | uint32_t(head[1]) << 16 | uint32_t(head[2]) << 8 | head[3];
+    const std::string type(reinterpret_cast<char*>(head + 4), 4);
+    if (type == "IDAT" || type == "IEND" || length > (1u << 24)) return std::nullopt;
+    std::string data(length, '\0');
+    if (!in.read(data.data(), std::streamsize(length)) || !in.ignore(4)) return std::nullopt;
+    const std::string keyword = std::string(kRecordKeyword) + '\0';
+    if (type == "tEXt" && data.compare(0, keyword.size(), keyword) == 0) return data.substr(keyword.size());
+  }
+  return std::nullopt;
 }
 
 }  // namespace spume

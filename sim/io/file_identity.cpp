@@ -5,12 +5,18 @@
 #include <cerrno>
 #include <cstring>
 #include <ctime>
+#include <fstream>
 
 #include "core/error.h"
 
 namespace spume {
 
 std::string FileIdentity::text() const {
+  if (mtime_ns == 0) {
+    char crc_text[16];
+    std::snprintf(crc_text, sizeof crc_text, "%08x", crc);
+    return str(size, " bytes, CRC-32 ", crc_text);
+  }
   const std::time_t seconds = std::time_t(mtime_ns / 1000000000);
   std::tm utc{};
   gmtime_r(&seconds, &utc);
@@ -27,6 +33,15 @@ FileIdentity file_identity(const std::filesystem::path& path) {
   if (!S_ISREG(st.st_mode)) fail(path.string(), ": not a regular file");
   FileIdentity id;
   id.size = uint64_t(st.st_size);
+  const std::string extension = path.extension().string();
+  if ((extension == ".spf" || extension == ".spd") && id.size >= 4) {
+    std::ifstream in(path, std::ios::binary);
+    unsigned char tail[4];
+    in.seekg(-4, std::ios::end);
+    if (!in.read(reinterpret_cast<char*>(tail), 4)) fail(path.string(), ": cannot read the cache's CRC");
+    id.crc = uint32_t(tail[0]) | uint32_t(tail[1]) << 8 | uint32_t(tail[2]) << 16 | uint32_t(tail[3]) << 24;
+    return id;
+  }
   id.mtime_ns = int64_t(st.st_mtim.tv_sec) * 1000000000 + int64_t(st.st_mtim.tv_nsec);
   return id;
 }

@@ -23,6 +23,7 @@ Json to_json(const FrameSurvey& f) {
   return {{"frame", f.frame},
           {"size", f.file.size},
           {"mtime_ns", f.file.mtime_ns},
+          {"crc", f.file.crc},
           {"particles", f.particles},
           {"min", {f.bounds.min.x(), f.bounds.min.y(), f.bounds.min.z()}},
           {"max", {f.bounds.max.x(), f.bounds.max.y(), f.bounds.max.z()}},
@@ -34,6 +35,7 @@ FrameSurvey frame_from_json(const Json& j) {
   f.frame = j.at("frame").get<int>();
   f.file.size = j.at("size").get<uint64_t>();
   f.file.mtime_ns = j.at("mtime_ns").get<int64_t>();
+  f.file.crc = j.at("crc").get<uint32_t>();
   f.particles = j.at("particles").get<uint64_t>();
   for (int a = 0; a < 3; ++a) f.bounds.min[a] = j.at("min").at(size_t(a)).get<float>();
   for (int a = 0; a < 3; ++a) f.bounds.max[a] = j.at("max").at(size_t(a)).get<float>();
@@ -61,7 +63,8 @@ Kept read_kept(const std::filesystem::path& keep, const std::string& pattern, fl
     for (const Json& f : j.at("frames")) kept.frames.push_back(frame_from_json(f));
     kept.spacing = j.at("spacing").get<float>();
     kept.spacing_frame = j.at("spacing_frame").get<int>();
-    kept.spacing_file = {j.at("spacing_size").get<uint64_t>(), j.at("spacing_mtime_ns").get<int64_t>()};
+    kept.spacing_file = {j.at("spacing_size").get<uint64_t>(), j.at("spacing_mtime_ns").get<int64_t>(),
+                         j.at("spacing_crc").get<uint32_t>()};
   } catch (const std::exception&) {
     return Kept{};
   }
@@ -172,6 +175,7 @@ FluidSurvey survey_fluid_files(const std::string& pattern, const std::vector<int
               {"spacing_frame", frames.front()},
               {"spacing_size", first_file.size},
               {"spacing_mtime_ns", first_file.mtime_ns},
+              {"spacing_crc", first_file.crc},
               {"frames", Json::array()}};
     // Keep what was known of frames outside this range too, so other ranges stay cheap.
     std::vector<FrameSurvey> all = survey.frames;

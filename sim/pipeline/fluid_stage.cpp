@@ -11,6 +11,7 @@
 #include "core/progress.h"
 #include "fluid/solver.h"
 #include "io/bgeo.h"
+#include "io/frame_pattern.h"
 #include "io/spume_cache.h"
 
 namespace spume {
@@ -42,21 +43,42 @@ std::string fluid_cache_pattern(const std::filesystem::path& scene_out) {
   return (scene_out / "fluid" / "fluid_%04d.spf").string();
 }
 
+StageRecord fluid_stage_record(const SimScene& scene, int last) {
+  StageRecord r;
+  r.stage = "fluid";
+  r.keys = scene.fluid_keys;
+  r.first_frame = 0;
+  r.last_frame = last;
+  return r;
+}
+
+int fluid_stage_last_frame(const SimScene& scene, const FluidStageOptions& options) {
+  const int scene_last = scene.frames->second;
+  return options.last_frame ? std::min(*options.last_frame, scene_last) : scene_last;
+}
+
 namespace {
 
-// Every file the stage writes per frame, and the body track of a scene with dynamic solids.
-std::vector<std::filesystem::path> fluid_cache_paths(const SimScene& scene, const std::filesystem::path& scene_out) {
-  std::vector<std::filesystem::path> paths;
-  for (int f = 0; f <= scene.frames->second; ++f) paths.push_back(fluid_cache_path(scene_out, f));
-  if (scene.solids.any_dynamic()) paths.push_back(body_track_path(scene_out));
-  return paths;
+std::vector<std::filesystem::path> body_files(const SimScene& scene, const std::filesystem::path& out) {
+  if (scene.solids.any_dynamic()) return {body_track_path(out)};
+  return {};
+}
+
+void remove_fluid_frames(const std::filesystem::path& out) {
+  std::error_code ec;
+  for (int f : find_pattern_frames(fluid_cache_pattern(out))) std::filesystem::remove(fluid_cache_path(out, f), ec);
 }
 
 }  // namespace
 
-bool fluid_caches_current(const SimScene& scene, const std::filesystem::path& out_root) {
+RecordMatch fluid_caches_match(const SimScene& scene, const std::filesystem::path& out_root, int last) {
   const std::filesystem::path out = out_root / scene.name;
-  return cache_is_current(out / "fluid", scene.fluid_fingerprint, fluid_cache_paths(scene, out));
+  return cache_match(out / "fluid", fluid_stage_record(scene, last), [&](int f) { return fluid_cache_path(out, f); },
+                     body_files(scene, out));
+}
+
+bool fluid_caches_current(const SimScene& scene, const std::filesystem::path& out_root) {
+  return fluid_caches_match(scene, out_root, scene.frames->second).kind == RecordMatch::Kind::Current;
 }
 
 FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions& options) {
@@ -64,23 +86,25 @@ FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions
   const auto start = std::chrono::steady_clock::now();
   const std::filesystem::path out = options.out_root / scene.name;
   const std::filesystem::path dir = out / "fluid";
-  const int last = scene.frames->second;
+  const int last = fluid_stage_last_frame(scene, options);
   FluidStageSummary summary;
   summary.frames = last + 1;
 
-  const std::vector<std::filesystem::path> paths = fluid_cache_paths(scene, out);
   const bool has_bodies = scene.solids.any_dynamic();
-  if (!options.force && cache_is_current(dir, scene.fluid_fingerprint, paths)) {
+  const RecordMatch match = fluid_caches_match(scene, options.out_root, last);
+  if (!options.force && match.kind == RecordMatch::Kind::Current) {
     summary.reused = true;
     return summary;
   }
-  mark_cache_started(dir);
+  summary.why = options.force ? "--force" : match.why;
+  remove_stage_record(dir);
+  remove_fluid_frames(out);
 
   FluidSolver solver(scene.solver.params, scene.solver.blocks, scene.solids);
   summary.particles = solver.size();
   Progress progress("fluid " + scene.name, size_t(last) + 1, options.quiet);
   progress.message(str(solver.size(), " fluid particles, ", solver.stats().boundary_particles,
-                       " boundary particles, frames 0-", last, " at ", scene.fluid.fps, " fps"));
+                       " boundary particles, frames 0-", last, " at ", scene.fluid.fps, " fps (", summary.why, ")"));
   std::string stats =
       "frame,time,steps,mean_dt,density_error_pct,max_density_error_pct,density_iterations,divergence_iterations,"
       "corrections,seconds\n";
@@ -91,7 +115,7 @@ FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions
     const auto t0 = std::chrono::steady_clock::now();
     solver.advance_to(double(f) / scene.fluid.fps);
     const FluidFrame frame = solver.frame(f);
-    write_fluid_cache(paths[size_t(f)], frame, scene.fluid.particle_radius);
+    write_fluid_cache(fluid_cache_path(out, f), frame, scene.fluid.particle_radius);
     if (has_bodies) bodies.frames.push_back(solver.body_poses());
     if (scene.write_fluid_bgeo) write_bgeo(out / "fluid_bgeo" / numbered("fluid", f, ".bgeo"), frame);
     const SolverStats now = solver.stats();
@@ -103,7 +127,7 @@ FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions
   }
   if (has_bodies) write_body_track(body_track_path(out), bodies);
   write_file_atomically(dir / "solver_stats.csv", [&](std::ostream& o) { o << stats; });
-  mark_cache_complete(dir, scene.fluid_fingerprint);
+  write_stage_record(dir, fluid_stage_record(scene, last));
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const SolverStats s = solver.stats();
   progress.finish(str(s.steps, " steps, mean dt ", s.average_dt * 1e3, " ms, max density error ",

@@ -5,11 +5,13 @@
 //   OUT/<scene>/fluid/solver_stats.csv     steps, time step, density error, iterations per frame
 //   OUT/<scene>/fluid/bodies.csv           the dynamic solids' poses per frame (body_track_file.h)
 //   OUT/<scene>/fluid_bgeo/fluid_0000.bgeo the same as BGEO, when output.fluid_bgeo is set
-// Current caches (cache_state.h) are reused and the solver does not run. The solver cannot resume
-// mid-sequence (its state between frames is not only the particles), so a stale or incomplete
-// folder is simulated again from t = 0.
+// Current caches (cache_state.h) are reused and the solver does not run; a folder holding more frames
+// than asked for serves a shorter range. A stale or incomplete folder is simulated again from t = 0.
 #include <filesystem>
+#include <optional>
 #include <string>
+
+#include "io/stage_record.h"
 
 #include "scene/sim_scene.h"
 
@@ -19,6 +21,7 @@ struct FluidStageOptions {
   std::filesystem::path out_root = "out";
   bool quiet = false;
   bool force = false;  // simulate even when the caches are current
+  std::optional<int> last_frame;  // solve only up to this frame (clamped to the scene's last)
 };
 
 struct FluidStageSummary {
@@ -26,13 +29,19 @@ struct FluidStageSummary {
   int frames = 0;
   size_t particles = 0;
   double seconds = 0.0;
+  std::string why;  // when the solver ran: what made the caches stale
 };
 
 std::filesystem::path fluid_cache_path(const std::filesystem::path& scene_out, int frame);
 // The pattern the diffuse stage and the renderer read the solver's frames with.
 std::string fluid_cache_pattern(const std::filesystem::path& scene_out);
 
-// The solver's caches of a solver scene are on disk and made from its current fluid keys.
+// What the stage makes for frames 0..last of the scene (io/stage_record.h).
+StageRecord fluid_stage_record(const SimScene& scene, int last);
+int fluid_stage_last_frame(const SimScene& scene, const FluidStageOptions& options);
+// The fluid folder against frames 0..last of the scene.
+RecordMatch fluid_caches_match(const SimScene& scene, const std::filesystem::path& out_root, int last);
+// The solver's caches of a solver scene hold every frame of the scene, made from its current keys.
 bool fluid_caches_current(const SimScene& scene, const std::filesystem::path& out_root);
 
 // Requires scene.source == Solver.

@@ -2,10 +2,13 @@
 
 #include <chrono>
 #include <cstdio>
+#include <algorithm>
+#include <cstdlib>
 #include <fstream>
 
 #include "body_track_file.h"
 #include "cache_state.h"
+#include "io/file_identity.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/progress.h"
@@ -63,26 +66,63 @@ std::filesystem::path diffuse_cache_path(const std::filesystem::path& scene_out,
 
 namespace {
 
-// The diffuse material starts empty at the first frame, so the caches depend on it too.
-std::string diffuse_fingerprint(const SimScene& scene, const std::vector<int>& frames) {
-  return scene.diffuse_fingerprint + str("\nfirst frame ", frames[0]);
+Json box_json(const Aabb& b) {
+  return Json::array({Json::array({b.min.x(), b.min.y(), b.min.z()}), Json::array({b.max.x(), b.max.y(), b.max.z()})});
 }
 
-std::vector<std::filesystem::path> diffuse_cache_paths(const std::filesystem::path& scene_out,
-                                                       const std::vector<int>& frames) {
-  std::vector<std::filesystem::path> paths;
-  for (int f : frames) paths.push_back(diffuse_cache_path(scene_out, f));
-  return paths;
+// What the inputs resolved to beyond the keys (the default domain, an inferred tank): they depend on
+// the whole sequence, so a change there is a change of what the caches would be.
+Json resolved_json(const SimScene& scene, const SceneInputs& inputs) {
+  Json tanks = Json::array();
+  for (size_t k = scene.solids.solids().size(); k < inputs.solids.solids().size(); ++k)
+    tanks.push_back(box_json(Aabb{inputs.solids.solids()[k].min, inputs.solids.solids()[k].max}));
+  return {{"domain", box_json(inputs.domain)}, {"inferred_tanks", tanks}};
 }
 
 }  // namespace
 
-bool diffuse_caches_current(const SimScene& scene, const FluidSource& source, const SimulateOptions& options) {
-  const std::vector<int> frames = diffuse_frames_to_run(scene, source, options);
-  const std::filesystem::path scene_out = options.out_root / scene.name;
-  return cache_is_current(scene_out / "diffuse", diffuse_fingerprint(scene, frames),
-                          diffuse_cache_paths(scene_out, frames));
+StageRecord diffuse_stage_record(const SimScene& scene, const SceneInputs& inputs, const std::vector<int>& frames,
+                                 const std::filesystem::path& scene_out) {
+  StageRecord r;
+  r.stage = "diffuse";
+  r.keys = scene.diffuse_keys;
+  r.keys["resolved"] = resolved_json(scene, inputs);
+  r.first_frame = frames.front();
+  r.last_frame = frames.back();
+  for (const FrameSurvey& f : inputs.survey.frames)
+    if (f.frame >= r.first_frame && f.frame <= r.last_frame) r.frame_inputs[f.frame] = f.file;
+  if (scene.solids.any_dynamic()) r.other_inputs["bodies.csv"] = file_identity(body_track_path(scene_out));
+  return r;
 }
+
+RecordMatch diffuse_caches_match(const SimScene& scene, const SceneInputs& inputs, const std::vector<int>& frames,
+                                 const std::filesystem::path& scene_out) {
+  return cache_match(scene_out / "diffuse", diffuse_stage_record(scene, inputs, frames, scene_out),
+                     [&](int f) { return diffuse_cache_path(scene_out, f); });
+}
+
+bool diffuse_caches_current(const SimScene& scene, const SceneInputs& inputs, const FluidSource& source,
+                            const SimulateOptions& options) {
+  const std::vector<int> frames = diffuse_frames_to_run(scene, source, options);
+  return diffuse_caches_match(scene, inputs, frames, options.out_root / scene.name).kind == RecordMatch::Kind::Current;
+}
+
+namespace {
+
+// The rows of an earlier stats.csv for frames up to `last`, header included ("" when unreadable).
+std::string stats_rows_up_to(const std::filesystem::path& path, int last) {
+  std::ifstream in(path);
+  std::string line, kept;
+  if (!std::getline(in, line)) return "";
+  kept = line + '\n';
+  while (std::getline(in, line)) {
+    const int frame = std::atoi(line.c_str());
+    if (frame <= last) kept += line + '\n';
+  }
+  return kept;
+}
+
+}  // namespace
 
 SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs, FluidSource& source,
                                const SimulateOptions& options) {
@@ -91,17 +131,31 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
   SimulateSummary summary;
   summary.out_dir = options.out_root / scene.name;
   const std::filesystem::path cache_dir = summary.out_dir / "diffuse";
-  const std::string fingerprint = diffuse_fingerprint(scene, frames);
-  const std::vector<std::filesystem::path> paths = diffuse_cache_paths(summary.out_dir, frames);
-  if (!options.force && cache_is_current(cache_dir, fingerprint, paths)) {
+  const StageRecord wanted = diffuse_stage_record(scene, inputs, frames, summary.out_dir);
+  const RecordMatch match = diffuse_caches_match(scene, inputs, frames, summary.out_dir);
+  if (!options.force && match.kind == RecordMatch::Kind::Current) {
     summary.reused = true;
     summary.frames = int(frames.size());
     return summary;
   }
-  mark_cache_started(cache_dir);
+  // A current prefix (an earlier, shorter range of the same sequence) is continued from its last
+  // frame: the diffuse cache of a frame is the whole state the simulator carries to the next.
+  size_t resume = 0;
+  if (!options.force && match.kind == RecordMatch::Kind::Prefix) {
+    const int made_last = read_stage_record(cache_dir)->last_frame;
+    resume = size_t(std::find(frames.begin(), frames.end(), made_last) - frames.begin());
+    if (resume >= frames.size()) resume = 0;
+  }
+  summary.why = options.force ? "--force" : match.why;
+  remove_stage_record(cache_dir);
 
-  Progress progress("simulate " + scene.name, frames.size(), options.quiet);
-  FluidFrame current = with_context(str("frame ", frames[0]), [&] { return source.load(frames[0]); });
+  Progress progress("simulate " + scene.name, frames.size() - resume, options.quiet);
+  if (resume > 0)
+    progress.message(str("diffuse: continuing from frame ", frames[resume], " (", match.why, ")"));
+  else if (!options.quiet && match.kind == RecordMatch::Kind::Stale && !options.force)
+    progress.message(str("diffuse: simulating (", match.why, ")"));
+  FluidFrame current =
+      with_context(str("frame ", frames[resume]), [&] { return source.load(frames[resume]); });
 
   DiffuseSetup setup;
   setup.params = scene.diffuse;
@@ -110,11 +164,12 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
   setup.bodies = scene_body_track(scene, summary.out_dir);
   setup.domain = inputs.domain;
   DiffuseSimulator simulator(setup);
+  if (resume > 0) simulator.set_particles(read_diffuse_cache(diffuse_cache_path(summary.out_dir, frames[resume])));
 
   write_file_atomically(summary.out_dir / "diffuse_params.json",
                         [&](std::ostream& out) { out << diffuse_params_to_json(scene.diffuse).dump(2) << '\n'; });
-  std::string stats_text;
-  {
+  std::string stats_text = resume > 0 ? stats_rows_up_to(summary.out_dir / "stats.csv", frames[resume]) : "";
+  if (stats_text.empty()) {
     std::ostringstream header;
     write_stats_header(header);
     stats_text = header.str();
@@ -122,12 +177,13 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
 
   bool warned_budget = false;
   int domain_warnings = 0;  // frames that lost more than 1% of what they emitted to the domain
-  for (size_t k = 0; k < frames.size(); ++k) {
+  for (size_t k = resume; k < frames.size(); ++k) {
     std::optional<FluidFrame> next;
     if (k + 1 < frames.size())
       next = with_context(str("frame ", frames[k + 1]), [&] { return source.load(frames[k + 1]); });
     double io_ms = 0.0;
     auto write_frame = [&](const DiffuseFrame& particles, const FrameStats& stats) {
+      if (k == resume && resume > 0) return;  // the frame continued from is on disk already
       const auto t0 = std::chrono::steady_clock::now();
       write_diffuse_cache(diffuse_cache_path(summary.out_dir, particles.index), particles);
       if (scene.write_bgeo)
@@ -151,17 +207,20 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
                              "domain.min / domain.max"));
       if (domain_warnings == 3) progress.message("  (more frames like this are counted in stats.csv, column removed)");
     }
-    std::ostringstream row;
-    write_stats_row(row, stats, current.time, io_ms);
-    stats_text += row.str();
+    if (!(k == resume && resume > 0)) {
+      std::ostringstream row;
+      write_stats_row(row, stats, current.time, io_ms);
+      stats_text += row.str();
+    }
     summary.max_diffuse = std::max(summary.max_diffuse, simulator.particles().size());
     summary.generated += stats.generated;
     ++summary.frames;
-    progress.update(k + 1, str(stats.by_type[0], " spray ", stats.by_type[1], " foam ", stats.by_type[2], " bubbles"));
+    progress.update(k + 1 - resume,
+                    str(stats.by_type[0], " spray ", stats.by_type[1], " foam ", stats.by_type[2], " bubbles"));
     if (next) current = std::move(*next);
   }
   write_file_atomically(summary.out_dir / "stats.csv", [&](std::ostream& out) { out << stats_text; });
-  mark_cache_complete(cache_dir, fingerprint);
+  write_stage_record(cache_dir, wanted);
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   progress.finish(str("max ", summary.max_diffuse, " diffuse particles -> ", summary.out_dir.string()));
   return summary;

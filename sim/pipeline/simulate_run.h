@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "io/stage_record.h"
 #include "pipeline/scene_inputs.h"
 #include "scene/fluid_source.h"
 #include "scene/sim_scene.h"
@@ -29,6 +30,7 @@ struct SimulateSummary {
   uint64_t generated = 0;
   double seconds = 0.0;
   std::filesystem::path out_dir;
+  std::string why;  // when it ran: what made the caches stale
 };
 
 std::filesystem::path diffuse_cache_path(const std::filesystem::path& scene_out, int frame);
@@ -37,8 +39,15 @@ std::filesystem::path diffuse_cache_path(const std::filesystem::path& scene_out,
 std::vector<int> diffuse_frames_to_run(const SimScene& scene, const FluidSource& source,
                                        const SimulateOptions& options);
 
-// The caches run_simulation would make are on disk and made from the scene's current diffuse keys.
-bool diffuse_caches_current(const SimScene& scene, const FluidSource& source, const SimulateOptions& options);
+// What the stage makes for `frames` (io/stage_record.h): the diffuse keys, the domain and tanks the
+// inputs resolved to, each fluid frame's file, and the body track of dynamic solids.
+StageRecord diffuse_stage_record(const SimScene& scene, const SceneInputs& inputs, const std::vector<int>& frames,
+                                 const std::filesystem::path& scene_out);
+RecordMatch diffuse_caches_match(const SimScene& scene, const SceneInputs& inputs, const std::vector<int>& frames,
+                                 const std::filesystem::path& scene_out);
+// The caches run_simulation would make are on disk and current.
+bool diffuse_caches_current(const SimScene& scene, const SceneInputs& inputs, const FluidSource& source,
+                            const SimulateOptions& options);
 
 // `inputs`: read_scene_inputs of the scene (solids with an inferred tank, the domain).
 SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs, FluidSource& source,

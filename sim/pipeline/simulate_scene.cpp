@@ -17,28 +17,39 @@ std::vector<int> scene_frames(const SimScene& scene) {
   return diffuse_frames_to_run(scene, *make_file_source(scene.file_pattern, scene.fluid.fps), SimulateOptions{});
 }
 
+namespace {
+
+// The last fluid frame a run needs: the end of the asked range, not the scene's.
+FluidStageOptions fluid_options(const SimScene& scene, const SimulateOptions& options) {
+  FluidStageOptions o;
+  o.out_root = options.out_root;
+  o.quiet = options.quiet;
+  o.force = options.force;
+  if (options.frames) o.last_frame = options.frames->second;
+  (void)scene;
+  return o;
+}
+
+}  // namespace
+
 bool scene_simulation_is_current(const SimScene& scene, const SimulateOptions& options) {
-  if (scene.source == FluidSourceKind::Solver && !fluid_caches_current(scene, options.out_root)) return false;
+  if (scene.source == FluidSourceKind::Solver) {
+    const int last = fluid_stage_last_frame(scene, fluid_options(scene, options));
+    if (fluid_caches_match(scene, options.out_root, last).kind != RecordMatch::Kind::Current) return false;
+  }
   const auto source = scene_fluid_source(scene, options.out_root);
-  return diffuse_caches_current(scene, *source, options);
+  const SceneInputs inputs = read_scene_inputs(scene, options.out_root, true);
+  return diffuse_caches_current(scene, inputs, *source, options);
 }
 
 SceneSimulation simulate_scene(const SimScene& scene, const SimulateOptions& options, bool diffuse) {
   SceneSimulation result;
-  if (scene.source == FluidSourceKind::Solver) {
-    FluidStageOptions fluid_options;
-    fluid_options.out_root = options.out_root;
-    fluid_options.quiet = options.quiet;
-    fluid_options.force = options.force;
-    result.fluid = run_fluid_stage(scene, fluid_options);
-  }
+  if (scene.source == FluidSourceKind::Solver) result.fluid = run_fluid_stage(scene, fluid_options(scene, options));
   if (diffuse) {
     auto source = scene_fluid_source(scene, options.out_root);
-    SimulateOptions diffuse_options = options;
-    // New fluid frames make the diffuse caches stale even when the keys did not change.
-    diffuse_options.force = options.force || (result.fluid.frames > 0 && !result.fluid.reused);
     const SceneInputs inputs = read_scene_inputs(scene, options.out_root, options.quiet);
-    result.diffuse = run_simulation(scene, inputs, *source, diffuse_options);
+    // New fluid frames have new file identities, which the diffuse record compares (io/stage_record.h).
+    result.diffuse = run_simulation(scene, inputs, *source, options);
   }
   return result;
 }

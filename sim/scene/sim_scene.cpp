@@ -8,11 +8,12 @@ namespace spume {
 namespace {
 
 // Bump when a change of spume's code makes old caches wrong.
-constexpr int kCacheGeneration = 1;
+// 2: walls count only where wet, emission along the motion, the whole sequence's domain.
+constexpr int kCacheGeneration = 2;
 
-std::string fingerprint(Json keys) {
+Json with_generation(Json keys) {
   keys["spume_cache_generation"] = kCacheGeneration;
-  return keys.dump();  // nlohmann::json objects are key-sorted: equal settings, equal text
+  return keys;
 }
 
 bool is_name_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'; }
@@ -75,11 +76,14 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
   Json fluid_keys = root.raw("fluid");
   if (fluid_keys.is_object()) fluid_keys.erase("frames");
   Json keys = {{"gravity", root.raw("gravity")}, {"fluid", fluid_keys}, {"solids", root.raw("solids")}};
-  scene.fluid_fingerprint = fingerprint(keys);
+  const Json output_keys = root.raw("output");
+  if (output_keys.is_object() && output_keys.contains("fluid_bgeo"))
+    keys["output"] = {{"fluid_bgeo", output_keys["fluid_bgeo"]}};  // what the fluid stage writes
+  scene.fluid_keys = with_generation(keys);
   keys["diffuse"] = root.raw("diffuse");
   keys["domain"] = root.raw("domain");
   keys["output"] = root.raw("output");
-  scene.diffuse_fingerprint = fingerprint(keys);
+  scene.diffuse_keys = with_generation(keys);
   return scene;
 }
 

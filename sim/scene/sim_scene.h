@@ -34,11 +34,11 @@ struct SimScene {
   // set for solver scenes: fluid.frames, default [0, kDefaultSolverFrames]).
   FluidSolverSetup solver;
 
-  // Canonical JSON of every key that shapes the fluid frames (gravity, fluid, solids; not the frame
-  // range) and, with the diffuse keys, domain and output added, the diffuse frames. A
-  // cache folder records the fingerprint it was made with; a different one means the cache is stale.
-  std::string fluid_fingerprint;
-  std::string diffuse_fingerprint;
+  // Every key that shapes the fluid frames (gravity, fluid, solids; not the frame range) and, with
+  // the diffuse keys, domain and output added, the diffuse frames, as JSON (objects compare equal
+  // whatever the key order). Cache folders record them (io/stage_record.h); a difference means stale.
+  Json fluid_keys;
+  Json diffuse_keys;
 };
 
 constexpr int kDefaultSolverFrames = 100;

@@ -148,12 +148,25 @@ TEST_F(FarmCommand, FailedFrameExitsNonZeroAndNamesTheFrame) {
   const fs::path out = root / name();
   fs::create_directories(out);
   fs::copy(root / "out", out, fs::copy_options::recursive);
-  fs::remove(out / "farm_tiny/diffuse/diffuse_0005.spd");
-  const Result r = run_spume("render " + kScene + " --out " + out.string());
+  // Damage the middle of frame 5's cache (its size and CRC trailer stay, so only reading it tells).
+  const fs::path cache = out / "farm_tiny/diffuse/diffuse_0005.spd";
+  {
+    std::fstream f(cache, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(100);
+    f.put('\x7f');
+  }
+  Result r = run_spume("render " + kScene + " --out " + out.string());
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("error: frame 5: "), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("diffuse_0005.spd"), std::string::npos) << r.err;
   EXPECT_EQ(count_lines_starting(r.out, "Saved: "), 5) << r.out;  // frames 0-4 are kept for the resume
+
+  // A missing cache is found before anything is rendered, and named.
+  fs::remove(cache);
+  r = run_spume("render " + kScene + " --out " + out.string() + " --overwrite");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("diffuse_0005.spd is missing"), std::string::npos) << r.err;
+  EXPECT_EQ(count_lines_starting(r.out, "Saved: "), 0) << r.out;
 }
 
 TEST_F(FarmCommand, SlurmScriptsHaveASimulationJobOnlyWhenTheCachesAreStale) {

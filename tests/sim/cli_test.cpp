@@ -82,7 +82,7 @@ TEST_F(SpumeCommand, EveryShippedSceneReadsAndValidates) {
     ++count;
     const Result r = run_spume("render " + entry.path().string() + " --out " + (dir / "out").string());
     EXPECT_EQ(r.status, 1) << entry.path() << ": " << r.output;
-    EXPECT_NE(r.output.find("no current fluid caches"), std::string::npos) << entry.path() << ": " << r.output;
+    EXPECT_NE(r.output.find("fluid caches are not current"), std::string::npos) << entry.path() << ": " << r.output;
   }
   EXPECT_GE(count, 5);
 }
@@ -209,18 +209,18 @@ TEST_F(SpumeCommand, RunSimulatesRendersAndThenReusesEverything) {
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("fluid solver           skipped"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("diffuse simulation     skipped"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("0 frames written, 3 already on disk"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("0 frames written, 3 current on disk"), std::string::npos) << r.output;
 
   // A render key: frames are rendered again, the simulation is reused.
   r = run_spume("run " + scene() + " --out " + out() + " --set render.foam.radius=0.02");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("diffuse simulation     skipped"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("3 frames written, 0 already on disk"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("3 frames written, 0 current on disk"), std::string::npos) << r.output;
 
   // --overwrite renders the chosen frames even though they are current.
   r = run_spume("render " + scene() + " --out " + out() + " --set render.foam.radius=0.02 --frames 1-1 --overwrite");
   ASSERT_EQ(r.status, 0) << r.output;
-  EXPECT_NE(r.output.find("1 frames written, 0 already on disk"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("1 frames written, 0 current on disk"), std::string::npos) << r.output;
 }
 
 TEST_F(SpumeCommand, RunLeavesOutWhatTheSceneDoesNotShow) {
@@ -243,7 +243,7 @@ TEST_F(SpumeCommand, RenderNeedsTheCachesAndBadRenderKeysAreNamed) {
   write_scene(std::string(kTinySolverScene) + "}}");
   Result r = run_spume("render " + scene() + " --out " + out());
   EXPECT_EQ(r.status, 1);
-  EXPECT_NE(r.output.find("out/tiny/fluid: no current fluid caches for this scene"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("out/tiny/fluid: the fluid caches are not current for this scene"), std::string::npos) << r.output;
 
   const std::pair<const char*, const char*> cases[] = {
       {R"("resolution": [64])", "/render/resolution: expected [width, height] in whole pixels"},

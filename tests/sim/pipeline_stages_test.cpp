@@ -137,23 +137,7 @@ TEST_F(PipelineStages, SimulationIsCurrentExactlyWhenSimulateSceneWouldRunNothin
   EXPECT_FALSE(scene_simulation_is_current(scene_of(json), options));  // a diffuse frame is missing
 }
 
-TEST(CacheState, FingerprintMustMatchAndEveryFrameExist) {
-  const fs::path dir = fs::temp_directory_path() / ("spume_cache_state_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  const fs::path frame = dir / "f_0000.bin";
-  std::ofstream(frame) << "x";
-  EXPECT_FALSE(cache_is_current(dir, "{\"a\":1}", {frame}));  // never completed
-  mark_cache_complete(dir, "{\"a\":1}");
-  EXPECT_TRUE(cache_is_current(dir, "{\"a\":1}", {frame}));
-  EXPECT_FALSE(cache_is_current(dir, "{\"a\":2}", {frame}));
-  EXPECT_FALSE(cache_is_current(dir, "{\"a\":1}", {frame, dir / "f_0001.bin"}));
-  mark_cache_started(dir);  // a run in progress is not complete
-  EXPECT_FALSE(cache_is_current(dir, "{\"a\":1}", {frame}));
-  fs::remove_all(dir);
-}
-
-TEST(SceneFingerprint, SameSettingsInAnyKeyOrderAgreeAndFrameRangeIsLeftOut) {
+TEST(SceneKeys, SameSettingsInAnyKeyOrderAgreeAndFrameRangeIsLeftOut) {
   Json a = tiny_solver_scene();
   Json b = Json::parse(R"({
     "solids": [{"max": [0.4, 0.6, 0.4], "min": [0, 0, 0], "type": "tank"}],
@@ -161,12 +145,12 @@ TEST(SceneFingerprint, SameSettingsInAnyKeyOrderAgreeAndFrameRangeIsLeftOut) {
               "fps": 20, "radius": 0.025, "source": "solver"},
     "name": "tiny"
   })");
-  EXPECT_EQ(scene_of(a).fluid_fingerprint, scene_of(b).fluid_fingerprint);
+  EXPECT_EQ(scene_of(a).fluid_keys, scene_of(b).fluid_keys);
   a["diffuse"] = {{"k_wc", 10}};
-  EXPECT_EQ(scene_of(a).fluid_fingerprint, scene_of(b).fluid_fingerprint);
-  EXPECT_NE(scene_of(a).diffuse_fingerprint, scene_of(b).diffuse_fingerprint);
+  EXPECT_EQ(scene_of(a).fluid_keys, scene_of(b).fluid_keys);
+  EXPECT_NE(scene_of(a).diffuse_keys, scene_of(b).diffuse_keys);
   a["gravity"] = {0, -9.0, 0};
-  EXPECT_NE(scene_of(a).fluid_fingerprint, scene_of(b).fluid_fingerprint);
+  EXPECT_NE(scene_of(a).fluid_keys, scene_of(b).fluid_keys);
 }
 
 }  // namespace

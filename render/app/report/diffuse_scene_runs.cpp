@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "pipeline/scene_inputs.h"
 #include "../scene_args.h"
 #include "core/error.h"
 #include "diffuse/simulator.h"
@@ -48,8 +49,9 @@ SceneWindow scene_runs(const StudyContext& c, const SceneSetup& setup, int last,
   DiffuseSetup base;
   base.params = scene.diffuse;
   base.fluid = scene.fluid;
-  base.solids = scene.solids;
-  base.domain = scene.domain.empty() ? default_domain(scene, source->load(all.front())) : scene.domain;
+  const SceneInputs inputs = read_scene_inputs(scene, setup.out_root, true);
+  base.solids = inputs.solids;
+  base.domain = inputs.domain;
   // Coarse grid: 16 cells along the domain's longest side.
   Grid grid;
   grid.origin = base.domain.min;
