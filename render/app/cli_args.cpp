@@ -4,11 +4,34 @@
 #include <cmath>
 #include <limits>
 
-#include "core/error.h"
 #include "core/frame_spec.h"
 #include "core/params.h"
 
 namespace spume::cli {
+namespace {
+
+// " (did you mean --threads?)" for the option closest to `name` (a few edits away, or the only
+// option it is the start of), else "".
+std::string option_suggestion(const std::string& name, const std::vector<OptionSpec>& specs) {
+  std::string best, prefixed;
+  size_t best_d = SIZE_MAX, prefixes = 0;
+  for (const auto& s : specs) {
+    if (size_t d = edit_distance(name, s.name); d < best_d) best_d = d, best = s.name;
+    if (!name.empty() && s.name.rfind(name, 0) == 0) ++prefixes, prefixed = s.name;
+  }
+  if (best_d <= std::min<size_t>(3, std::max<size_t>(1, name.size() / 2)))
+    return str(" (did you mean --", best, "?)");
+  if (prefixes == 1) return str(" (did you mean --", prefixed, "?)");
+  return "";
+}
+
+const OptionSpec* find_spec(const std::string& name, const std::vector<OptionSpec>& specs) {
+  for (const auto& s : specs)
+    if (s.name == name) return &s;
+  return nullptr;
+}
+
+}  // namespace
 
 std::optional<std::string> ParsedArgs::value(const std::string& name) const {
   auto it = values.find(name);
@@ -22,56 +45,54 @@ const std::vector<std::string>& ParsedArgs::all(const std::string& name) const {
   return it == values.end() ? none : it->second;
 }
 
-ParsedArgs parse(const std::vector<std::string>& args, const std::vector<OptionSpec>& specs, const std::string& command) {
+ParsedArgs parse(const std::vector<std::string>& args, const std::vector<OptionSpec>& specs) {
   ParsedArgs out;
+  out.raw = args;
+  bool options_ended = false;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
-    if (a.size() < 3 || a.compare(0, 2, "--") != 0) {
+    // "-" alone is an operand by convention (standard input); "--" makes the rest operands.
+    if (options_ended || a.size() < 2 || a[0] != '-') {
       out.positional.push_back(a);
       continue;
     }
+    if (a == "--") {
+      options_ended = true;
+      continue;
+    }
+    if (a == "-h" || a == "--help") {
+      out.help = true;
+      return out;
+    }
+    if (a[1] != '-') usage_fail("unknown option ", a, " (spume's options are long: --name; -h is --help)");
     std::string name = a.substr(2), value;
     bool inline_value = false;
     if (auto eq = name.find('='); eq != std::string::npos) {
       value = name.substr(eq + 1), name = name.substr(0, eq), inline_value = true;
     }
-    const OptionSpec* spec = nullptr;
-    for (const auto& s : specs)
-      if (s.name == name) spec = &s;
-    if (!spec) {
-      std::string best;
-      size_t best_d = SIZE_MAX;
-      for (const auto& s : specs)
-        if (size_t d = edit_distance(name, s.name); d < best_d) best_d = d, best = s.name;
-      fail("spume ", command, ": unknown option --", name,
-           best_d <= 3 ? str(" (did you mean --", best, "?)") : std::string(), "\n", usage_lines(specs));
-    }
-    if (spec->takes_value) {
+    const OptionSpec* spec = find_spec(name, specs);
+    if (!spec) usage_fail("unknown option --", name, option_suggestion(name, specs));
+    if (spec->takes_value()) {
       if (!inline_value) {
-        if (i + 1 >= args.size()) fail("spume ", command, ": --", name, " needs a value");
+        if (i + 1 >= args.size()) usage_fail("--", name, " needs a value: --", name, " ", spec->value);
         value = args[++i];
       }
-      if (!spec->repeatable && out.has(name)) fail("spume ", command, ": --", name, " given twice");
+      if (!spec->repeatable && out.has(name))
+        usage_fail("--", name, " given twice (\"", out.values[name].back(), "\" and \"", value, "\"); give it once");
       out.values[name].push_back(value);
     } else {
-      if (inline_value) fail("spume ", command, ": --", name, " takes no value");
+      if (inline_value) usage_fail("--", name, " takes no value (found --", name, "=", value, ")");
       out.values[name];
     }
   }
   return out;
 }
 
-std::string usage_lines(const std::vector<OptionSpec>& specs) {
-  std::string text = "options:";
-  for (const auto& s : specs) text += str("\n  --", s.name, " ", s.help);
-  return text;
-}
-
 int parse_int(const std::string& text, const std::string& option, int lo, int hi) {
   int v = 0;
   auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
   if (ec != std::errc() || end != text.data() + text.size() || v < lo || v > hi)
-    fail(option, ": \"", text, "\" is not a whole number from ", lo, " to ", hi);
+    usage_fail(option, ": \"", text, "\" is not a whole number from ", lo, " to ", hi);
   return v;
 }
 
@@ -82,16 +103,21 @@ double parse_double(const std::string& text, const std::string& option) {
     if (used == text.size() && std::isfinite(v)) return v;
   } catch (const std::exception&) {
   }
-  fail(option, ": \"", text, "\" is not a number");
+  usage_fail(option, ": \"", text, "\" is not a number");
+}
+
+void check_frame_spec(const std::string& text, const std::string& option) {
+  as_usage([&] { parse_frame_spec(text, 0, std::numeric_limits<int>::max(), option.c_str()); });
 }
 
 std::pair<int, int> parse_frame_range(const std::string& text, const std::string& option) {
   // The frame-spec grammar everywhere, but only specs that select one unbroken run of frames.
-  const std::vector<int> frames = parse_frame_spec(text, 0, std::numeric_limits<int>::max(), option.c_str());
+  const std::vector<int> frames =
+      as_usage([&] { return parse_frame_spec(text, 0, std::numeric_limits<int>::max(), option.c_str()); });
   for (size_t k = 1; k < frames.size(); ++k)
     if (frames[k] != frames[k - 1] + 1)
-      fail(option, ": \"", text, "\" is not one unbroken range (frame ", frames[k - 1], " is followed by ", frames[k],
-           "); the simulation steps through time from its first frame, so it takes N or A-B");
+      usage_fail(option, ": \"", text, "\" is not one unbroken range (frame ", frames[k - 1], " is followed by ",
+                 frames[k], "); the simulation steps through time from its first frame, so it takes N or A-B");
   return {frames.front(), frames.back()};
 }
 

@@ -1,7 +1,6 @@
-// spume farm: render frame chunks on many machines sharing the output folder.
-//   spume farm chunks SCENE --chunk N [--frames SPEC]   one frame spec per line (GNU parallel, scripts)
-//   spume farm slurm SCENE --chunk N [--frames SPEC] [--partition P] [--submit]
-//                                                      Slurm scripts: simulation job, then render array
+// spume farm chunks and spume farm slurm: render frame chunks on many machines sharing the output
+// folder, by GNU parallel or scripts (one frame spec per line), or by a Slurm array job after a
+// simulation job.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -24,22 +23,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kUsage =
-    "usage: spume farm chunks SCENE --chunk N [--frames SPEC] [scene options]\n"
-    "         one frame spec per line, e.g. | parallel spume render SCENE --frames {}\n"
-    "       spume farm slurm SCENE --chunk N [--frames SPEC] [--partition P] [--submit] [scene options]\n"
-    "         writes OUT/<scene>/farm/{simulate.sbatch,render.sbatch,submit.sh}; --submit runs submit.sh\n";
-
 std::vector<cli::OptionSpec> farm_options(bool slurm) {
   std::vector<cli::OptionSpec> options = scene_command_options();
-  options.push_back({"frames", true, false, "SPEC      frames to render (default: all): 7, 0-99, 0-99:2, 1-3,5,10-20"});
-  options.push_back({"chunk", true, false, "N         frames per chunk (required)"});
+  options.push_back({"frames", "SPEC", "frames to render (default: all): 7, 0-99, 0-99:2, 1-3,5,10-20"});
+  options.push_back({"chunk", "N", "frames per chunk (required)"});
   if (slurm) {
-    options.push_back({"partition", true, false, "P         Slurm partition of both jobs (default: the cluster's)"});
-    options.push_back({"max-running", true, false, "N         at most N array tasks at once (--array=...%N)"});
-    options.push_back(
-        {"sbatch", true, true, "OPTION    one more #SBATCH line for both jobs, e.g. --sbatch=--time=2:00:00"});
-    options.push_back({"submit", false, false, "          submit the jobs now (bash OUT/<scene>/farm/submit.sh)"});
+    options.push_back({"partition", "P", "Slurm partition of both jobs (default: the cluster's)"});
+    options.push_back({"max-running", "N", "at most N array tasks at once (--array=...%N)"});
+    options.push_back({"sbatch", "OPTION", "one more #SBATCH line for both jobs, e.g. --sbatch=--time=2:00:00", true});
+    options.push_back({"submit", "", "submit the jobs now (bash OUT/<scene>/farm/submit.sh)"});
   }
   return options;
 }
@@ -52,22 +44,23 @@ struct Plan {
 
 // Loads the scene and splits its frames into chunks. Tasks never delete frames: each renders the
 // frames of its chunk whose records do not match (render_stage.h).
-Plan plan(const cli::ParsedArgs& args, const std::vector<cli::OptionSpec>& options, const std::string& command) {
-  Plan p;
-  p.setup = load_scene_setup(args, options, command);
+Plan plan(const cli::ParsedArgs& args) {
+  // The command line is checked whole before the scene is read.
   const auto chunk = args.value("chunk");
-  if (!chunk) fail("spume ", command, ": --chunk N (frames per chunk) is required\n", cli::usage_lines(options));
+  if (!chunk) cli::usage_fail("--chunk N (frames per chunk) is required");
+  const int chunk_size = cli::parse_int(*chunk, "--chunk", 1, 1 << 30);
+  if (auto spec = args.value("frames")) cli::check_frame_spec(*spec, "--frames");
+  Plan p;
+  p.setup = load_scene_setup(args);
   std::vector<int> frames = scene_frames(p.setup.sim);
   if (auto spec = args.value("frames")) frames = farm::select_frames(*spec, frames);
   p.frames = int(frames.size());
-  p.chunks = farm::chunk_specs(frames, cli::parse_int(*chunk, "--chunk", 1, 1 << 30));
+  p.chunks = farm::chunk_specs(frames, chunk_size);
   return p;
 }
 
-int farm_chunks(const std::vector<std::string>& raw) {
-  const auto options = farm_options(false);
-  const cli::ParsedArgs args = cli::parse(raw, options, "farm chunks");
-  for (const std::string& chunk : plan(args, options, "farm chunks").chunks) std::printf("%s\n", chunk.c_str());
+int farm_chunks(const cli::ParsedArgs& args) {
+  for (const std::string& chunk : plan(args).chunks) std::printf("%s\n", chunk.c_str());
   return 0;
 }
 
@@ -101,10 +94,10 @@ void write_script(const fs::path& path, const std::string& text) {
   std::printf("Saved: %s\n", path.string().c_str());
 }
 
-int farm_slurm(const std::vector<std::string>& raw) {
-  const auto options = farm_options(true);
-  const cli::ParsedArgs args = cli::parse(raw, options, "farm slurm");
-  const Plan p = plan(args, options, "farm slurm");
+int farm_slurm(const cli::ParsedArgs& args) {
+  std::optional<int> max_running;
+  if (auto n = args.value("max-running")) max_running = cli::parse_int(*n, "--max-running", 1, 1 << 20);
+  const Plan p = plan(args);
   const SceneSetup& setup = p.setup;
 
   farm::SlurmFarm farm;
@@ -114,7 +107,7 @@ int farm_slurm(const std::vector<std::string>& raw) {
   farm.work_dir = fs::current_path();
   farm.partition = args.value("partition").value_or("");
   if (auto threads = args.value("threads")) farm.cpus_per_task = cli::parse_int(*threads, "--threads", 1, 1024);
-  if (auto n = args.value("max-running")) farm.max_running = cli::parse_int(*n, "--max-running", 1, 1 << 20);
+  if (max_running) farm.max_running = *max_running;
   farm.sbatch_options = args.all("sbatch");
   // The nodes run this very binary: the output folder and the build are on the shared file system.
   const std::string spume = fs::read_symlink("/proc/self/exe").string();
@@ -155,16 +148,24 @@ int farm_slurm(const std::vector<std::string>& raw) {
 
 }  // namespace
 
-int command_farm(const std::vector<std::string>& args) {
-  const std::vector<std::string> rest(args.begin() + (args.empty() ? 0 : 1), args.end());
-  if (!args.empty() && args[0] == "chunks") return farm_chunks(rest);
-  if (!args.empty() && args[0] == "slurm") return farm_slurm(rest);
-  if (args.empty()) {
-    std::fputs(kUsage, stderr);
-    return 2;
-  }
-  std::fprintf(stderr, "spume farm: unknown farm \"%s\"; allowed: chunks, slurm\n%s", args[0].c_str(), kUsage);
-  return 2;
+Command cmd_farm_chunks() {
+  cli::CommandSpec spec;
+  spec.name = "farm chunks";
+  spec.forms = scene_command_forms("--chunk N");
+  spec.summary = "the render's frames in chunks, one frame spec per line, for GNU parallel or scripts";
+  spec.options = farm_options(false);
+  spec.notes = {"example: spume farm chunks SCENE.json --chunk 10 | parallel spume render SCENE.json --frames {}"};
+  return {spec, farm_chunks};
+}
+
+Command cmd_farm_slurm() {
+  cli::CommandSpec spec;
+  spec.name = "farm slurm";
+  spec.forms = scene_command_forms("--chunk N");
+  spec.summary = "a Slurm array job rendering the chunks, after a simulation job if needed";
+  spec.notes = {"writes OUT/<scene>/farm/{simulate.sbatch,render.sbatch,submit.sh}; --submit runs submit.sh"};
+  spec.options = farm_options(true);
+  return {spec, farm_slurm};
 }
 
 }  // namespace spume

@@ -22,16 +22,16 @@ struct Variation {
 Variation parse_variation(const std::string& text) {
   const auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
-    fail("--vary \"", text, "\": expected KEY=V1,V2,... such as render.spray.radius=0.002,0.004");
+    cli::usage_fail("--vary \"", text, "\": expected KEY=V1,V2,... such as render.spray.radius=0.002,0.004");
   Variation v{text.substr(0, eq), {}};
   if (v.key.rfind("render.", 0) != 0)
-    fail("--vary \"", text, "\": look-dev varies render.* keys only (the caches fix everything simulated); "
+    cli::usage_fail("--vary \"", text, "\": look-dev varies render.* keys only (the caches fix everything simulated); "
          "use --set and `spume run` for ", v.key);
   size_t start = eq + 1;
   while (start <= text.size()) {
     const auto comma = text.find(',', start);
     const std::string value = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-    if (value.empty()) fail("--vary \"", text, "\": empty value in the list");
+    if (value.empty()) cli::usage_fail("--vary \"", text, "\": empty value in the list");
     v.values.push_back(value);
     if (comma == std::string::npos) break;
     start = comma + 1;
@@ -54,35 +54,33 @@ std::vector<std::vector<std::string>> combinations(const std::vector<Variation>&
   return out;
 }
 
-}  // namespace
-
-int command_lookdev(const std::vector<std::string>& raw) {
-  std::vector<cli::OptionSpec> options = scene_command_options();
-  options.push_back({"frame", true, false, "N         the frame to render (default: the scene's first)"});
-  options.push_back({"vary", true, true, "KEY=A,B,.. render key and its values, e.g. render.foam.radius=0.004,0.008"});
-  options.push_back({"columns", true, false, "N         tiles per row (default: the last --vary's count)"});
-  options.push_back({"tile-width", true, false, "W         tile width in pixels (default: the scene's, at most 480)"});
-  options.push_back({"output", true, false, "FILE      the sheet (default OUT/<scene>/lookdev/lookdev_<frame>.png)"});
-  const cli::ParsedArgs args = cli::parse(raw, options, "lookdev");
+int lookdev(const cli::ParsedArgs& args) {
   std::vector<Variation> vary;
   for (const auto& v : args.all("vary")) vary.push_back(parse_variation(v));
   const auto combos = combinations(vary);
-  if (combos.size() > 256) fail("--vary: ", combos.size(), " combinations; at most 256 fit a contact sheet");
+  if (combos.size() > 256) cli::usage_fail("--vary: ", combos.size(), " combinations; at most 256 fit a contact sheet");
+  // Every option value is checked before the first scene is loaded.
+  auto optional_int = [&](const char* name, int lo, int hi) -> std::optional<int> {
+    if (auto text = args.value(name)) return cli::parse_int(*text, str("--", name), lo, hi);
+    return std::nullopt;
+  };
+  const std::optional<int> asked_tile_width = optional_int("tile-width", 16, 4096);
+  const std::optional<int> asked_frame = optional_int("frame", 0, 1 << 30);
+  const std::optional<int> asked_columns = optional_int("columns", 1, 256);
 
   std::vector<ContactTile> tiles;
   std::filesystem::path output;
   int frame = -1;
   Progress progress("lookdev", combos.size(), args.has("quiet"));
   for (size_t c = 0; c < combos.size(); ++c) {
-    SceneSetup setup = load_scene_setup(args, options, "lookdev", combos[c]);
+    SceneSetup setup = load_scene_setup(args, combos[c]);
     const int full_width = setup.render.width;
-    const int tile_width = args.has("tile-width") ? cli::parse_int(*args.value("tile-width"), "--tile-width", 16, 4096)
-                                                  : std::min(full_width, 480);
+    const int tile_width = asked_tile_width.value_or(std::min(full_width, 480));
     setup.render.height = std::max(1, int(std::lround(double(setup.render.height) * tile_width / full_width)));
     setup.render.width = tile_width;
     PreparedRender prepared = prepare_render(setup.sim, setup.render, setup.out_root);
     if (frame < 0) {
-      frame = args.has("frame") ? cli::parse_int(*args.value("frame"), "--frame", 0, 1 << 30) : prepared.frames.front();
+      frame = asked_frame.value_or(prepared.frames.front());
       if (!std::binary_search(prepared.frames.begin(), prepared.frames.end(), frame))
         fail("--frame ", frame, ": not a frame of ", setup.sim.name, " (", prepared.frames.front(), "-",
              prepared.frames.back(), ")");
@@ -96,12 +94,28 @@ int command_lookdev(const std::vector<std::string>& raw) {
     if (tiles.back().labels.empty()) tiles.back().labels.push_back(str(setup.sim.name, " frame ", frame));
     progress.update(c + 1);
   }
-  const int columns = args.has("columns") ? cli::parse_int(*args.value("columns"), "--columns", 1, 256)
-                                          : (vary.empty() ? 1 : int(vary.back().values.size()));
+  const int columns = asked_columns.value_or(vary.empty() ? 1 : int(vary.back().values.size()));
   write_png(output, make_contact_sheet(tiles, columns));
   progress.finish();
   if (!args.has("quiet")) std::printf("Saved: %s\n", output.string().c_str());
   return 0;
+}
+
+}  // namespace
+
+Command cmd_lookdev() {
+  cli::CommandSpec spec;
+  spec.name = "lookdev";
+  spec.forms = scene_command_forms("[--vary KEY=A,B,..]");
+  spec.summary = "one frame for every combination of render keys, as a labelled contact sheet";
+  spec.options = scene_command_options();
+  spec.options.push_back({"frame", "N", "the frame to render (default: the scene's first)"});
+  spec.options.push_back(
+      {"vary", "KEY=A,B,..", "render key and its values, e.g. render.foam.radius=0.004,0.008", true});
+  spec.options.push_back({"columns", "N", "tiles per row (default: the last --vary's count)"});
+  spec.options.push_back({"tile-width", "W", "tile width in pixels (default: the scene's, at most 480)"});
+  spec.options.push_back({"output", "FILE", "the sheet (default OUT/<scene>/lookdev/lookdev_<frame>.png)"});
+  return {spec, lookdev};
 }
 
 }  // namespace spume

@@ -15,9 +15,9 @@ namespace {
 
 std::vector<cli::OptionSpec> render_options() {
   std::vector<cli::OptionSpec> options = scene_command_options();
-  options.push_back({"frames", true, false, "SPEC      render only these frames: 7, 0-99, 0-99:2, 1-3,5,10-20"});
-  options.push_back({"overwrite", false, false, "          render frames that already exist on disk"});
-  options.push_back({"movie", false, false, "          also encode OUT/<scene>/<scene>.mp4 with ffmpeg (if installed)"});
+  options.push_back({"frames", "SPEC", "render only these frames: 7, 0-99, 0-99:2, 1-3,5,10-20"});
+  options.push_back({"overwrite", "", "render frames that already exist on disk"});
+  options.push_back({"movie", "", "also encode OUT/<scene>/<scene>.mp4 with ffmpeg (if installed)"});
   return options;
 }
 
@@ -51,22 +51,17 @@ void finish_render(const RenderStageSummary& s, const cli::ParsedArgs& args, con
   }
 }
 
-}  // namespace
-
-int command_render(const std::vector<std::string>& raw) {
-  const auto options = render_options();
-  const cli::ParsedArgs args = cli::parse(raw, options, "render");
-  const SceneSetup setup = load_scene_setup(args, options, "render");
+int render(const cli::ParsedArgs& args) {
+  if (auto frames = args.value("frames")) cli::check_frame_spec(*frames, "--frames");
+  const SceneSetup setup = load_scene_setup(args);
   finish_render(run_render_stage(setup.sim, setup.render, setup.render_keys, stage_options(args, setup)), args,
                 setup);
   return 0;
 }
 
-int command_run(const std::vector<std::string>& raw) {
-  auto options = render_options();
-  options.push_back({"force", false, false, "          simulate even when the caches are current"});
-  const cli::ParsedArgs args = cli::parse(raw, options, "run");
-  const SceneSetup setup = load_scene_setup(args, options, "run");
+int run(const cli::ParsedArgs& args) {
+  if (auto frames = args.value("frames")) cli::check_frame_spec(*frames, "--frames");
+  const SceneSetup setup = load_scene_setup(args);
   SimulateOptions sim;
   sim.out_root = setup.out_root;
   sim.quiet = setup.quiet;
@@ -85,6 +80,27 @@ int command_run(const std::vector<std::string>& raw) {
       run_render_stage(setup.sim, setup.render, setup.render_keys, stage_options(args, setup));
   finish_render(rendered, args, setup);
   return 0;
+}
+
+}  // namespace
+
+Command cmd_render() {
+  cli::CommandSpec spec;
+  spec.name = "render";
+  spec.forms = scene_command_forms();
+  spec.summary = "the simulation caches -> PNG frames (never simulates)";
+  spec.options = render_options();
+  return {spec, render};
+}
+
+Command cmd_run() {
+  cli::CommandSpec spec;
+  spec.name = "run";
+  spec.forms = scene_command_forms();
+  spec.summary = "simulate what is missing (fluid, then diffuse), then render the PNG frames";
+  spec.options = render_options();
+  spec.options.push_back({"force", "", "simulate even when the caches are current"});
+  return {spec, run};
 }
 
 }  // namespace spume

@@ -1,16 +1,23 @@
 #pragma once
-#include <string>
-#include <vector>
+// The spume commands. Each is its help (usage, options) and a function that runs it on the parsed
+// command line and returns the exit status; main parses, answers -h/--help, and reports what is
+// thrown: spume::Error exits 1, cli::UsageError 2, anything else 3 (cli_args.h).
+#include "cli_help.h"
 
 namespace spume {
 
-// Each returns the process exit status; errors are thrown as spume::Error and reported by main.
-int command_simulate(const std::vector<std::string>& args);
-int command_render(const std::vector<std::string>& args);
-int command_run(const std::vector<std::string>& args);
-int command_lookdev(const std::vector<std::string>& args);
-int command_farm(const std::vector<std::string>& args);
-int command_info(const std::vector<std::string>& args);
-int command_report(const std::vector<std::string>& args);
+struct Command {
+  cli::CommandSpec spec;
+  int (*run)(const cli::ParsedArgs& args);
+};
+
+Command cmd_run();
+Command cmd_simulate();
+Command cmd_render();
+Command cmd_lookdev();
+Command cmd_farm_chunks();
+Command cmd_farm_slurm();
+Command cmd_info();
+Command cmd_report();
 
 }  // namespace spume

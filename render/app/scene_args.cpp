@@ -19,27 +19,30 @@ std::string name_from_pattern(const std::string& pattern) {
 
 std::vector<cli::OptionSpec> scene_command_options() {
   return {
-      {"out", true, false, "DIR       output root (default out/); results go to DIR/<scene name>/"},
-      {"threads", true, false, "N         worker threads (default: one per core); results do not depend on it"},
-      {"set", true, true, "KEY=VALUE override a scene key by its path, e.g. --set diffuse.k_ta=2000"},
-      {"quiet", false, false, "          no progress on stderr"},
-      {"fluid", true, false,
-       "PATTERN   fluid files with every default, no scene file (e.g. 'cache/ParticleData_Fluid_%d.bgeo')"},
-      {"radius", true, false, "R         with --fluid: the fluid particle radius in m"},
-      {"fps", true, false, "F         with --fluid: frames per second of the fluid files (default 50)"},
+      {"out", "DIR", "output root (default out/); results go to DIR/<scene name>/"},
+      {"threads", "N", "worker threads (default: one per core); results do not depend on it"},
+      {"set", "KEY=VALUE", "override a scene key by its path, e.g. --set diffuse.k_ta=2000", true},
+      {"quiet", "", "no progress on stderr"},
+      {"fluid", "PATTERN", "fluid files with every default, no scene file (e.g. 'cache/ParticleData_Fluid_%d.bgeo')"},
+      {"radius", "R", "with --fluid: the fluid particle radius in m"},
+      {"fps", "F", "with --fluid: frames per second of the fluid files (default 50)"},
   };
 }
 
-SceneSetup load_scene_setup(const cli::ParsedArgs& args, const std::vector<cli::OptionSpec>& specs,
-                            const std::string& command, const std::vector<std::string>& extra_overrides) {
+std::vector<std::string> scene_command_forms(const std::string& extra) {
+  const std::string tail = (extra.empty() ? "" : extra + " ") + "[options]";
+  return {"SCENE.json " + tail, "--fluid PATTERN --radius R " + tail};
+}
+
+SceneSetup load_scene_setup(const cli::ParsedArgs& args, const std::vector<std::string>& extra_overrides) {
   if (args.has("threads")) set_thread_count(cli::parse_int(*args.value("threads"), "--threads", 1, 1024));
   std::vector<std::string> overrides = args.all("set");
   overrides.insert(overrides.end(), extra_overrides.begin(), extra_overrides.end());
   LoadedScene loaded = [&] {
     if (args.has("fluid")) {
-      if (!args.positional.empty()) fail("spume ", command, ": give either a SCENE file or --fluid, not both");
-      if (!args.has("radius"))
-        fail("spume ", command, " --fluid: --radius R (the fluid particle radius in m) is required");
+      if (!args.positional.empty())
+        cli::usage_fail("give either a SCENE file (", args.positional[0], ") or --fluid, not both");
+      if (!args.has("radius")) cli::usage_fail("--fluid needs --radius R (the fluid particle radius in m)");
       Json scene = {{"name", name_from_pattern(*args.value("fluid"))},
                     {"fluid",
                      {{"source", "files"},
@@ -48,10 +51,8 @@ SceneSetup load_scene_setup(const cli::ParsedArgs& args, const std::vector<cli::
                       {"fps", args.has("fps") ? cli::parse_double(*args.value("fps"), "--fps") : 50.0}}}};
       return scene_from_json(std::move(scene), "--fluid", ".", "fluid", overrides);
     }
-    if (args.has("radius") || args.has("fps")) fail("spume ", command, ": --radius and --fps go with --fluid");
-    if (args.positional.size() != 1)
-      fail("usage: spume ", command, " SCENE.json [options]  |  spume ", command,
-           " --fluid PATTERN --radius R [options]\n", cli::usage_lines(specs));
+    if (args.has("radius") || args.has("fps")) cli::usage_fail("--radius and --fps go with --fluid");
+    if (args.positional.empty()) cli::usage_fail("no scene: give SCENE.json, or --fluid PATTERN --radius R");
     return load_scene_file(args.positional[0], overrides);
   }();
 

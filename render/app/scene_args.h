@@ -15,6 +15,9 @@ namespace spume {
 // The options every scene command takes; commands append their own.
 std::vector<cli::OptionSpec> scene_command_options();
 
+// The usage lines of a scene command: with a scene file, or with --fluid.
+std::vector<std::string> scene_command_forms(const std::string& extra = "");
+
 struct SceneSetup {
   SimScene sim;
   RenderSettings render;
@@ -23,8 +26,8 @@ struct SceneSetup {
   bool quiet = false;
 };
 
-// Applies --threads, loads the scene with --set (and `extra_overrides`), reads both halves.
-SceneSetup load_scene_setup(const cli::ParsedArgs& args, const std::vector<cli::OptionSpec>& specs,
-                            const std::string& command, const std::vector<std::string>& extra_overrides = {});
+// Applies --threads, loads the scene with --set (and `extra_overrides`), reads both halves. Command-line
+// mistakes throw cli::UsageError, problems of the scene spume::Error.
+SceneSetup load_scene_setup(const cli::ParsedArgs& args, const std::vector<std::string>& extra_overrides = {});
 
 }  // namespace spume

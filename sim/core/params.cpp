@@ -42,8 +42,25 @@ Json ParamReader::raw(const std::string& key) const {
 
 bool ParamReader::has(const std::string& key) const { return find(key) != nullptr; }
 
+// For a key that is absent (usually: required and missing), the present key of the same object that
+// looks like a typo of it: nobody asked for it, and it is not a key asked for anywhere else either
+// (so "max" is never offered for a missing "min"). One edit per three letters at most.
+std::string ParamReader::near_miss_hint(const std::string& key) const {
+  std::set<std::string> known_names;
+  for (const auto& asked : doc_->asked) known_names.insert(asked.substr(asked.rfind('/') + 1));
+  std::string best;
+  size_t best_distance = std::max<size_t>(1, key.size() / 3) + 1;
+  const Json& obj = object();
+  for (auto it = obj.begin(); it != obj.end(); ++it) {
+    if (doc_->asked.count(path_of(it.key())) || known_names.count(it.key())) continue;
+    if (const size_t d = edit_distance(key, it.key()); d < best_distance) best_distance = d, best = it.key();
+  }
+  return best.empty() ? "" : str(" (did you mean \"", best, "\"? it is not a known key)");
+}
+
 void ParamReader::fail_at(const std::string& key, const std::string& message) const {
-  fail(doc_->source, ": ", path_of(key), ": ", message);
+  const bool absent = !object().contains(key);
+  fail(doc_->source, ": ", path_of(key), ": ", message, absent ? near_miss_hint(key) : std::string());
 }
 
 std::optional<double> ParamReader::optional_number(const std::string& key) const {

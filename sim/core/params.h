@@ -60,7 +60,8 @@ class ParamReader {
   // of what produced a cache, never for reading values.
   Json raw(const std::string& key) const;
 
-  // Fails with the message prefixed by the source file and this key's path.
+  // Fails with the message prefixed by the source file and this key's path; when `key` is absent, a
+  // present unknown key a typo away is suggested ("radus" for a missing "radius").
   [[noreturn]] void fail_at(const std::string& key, const std::string& message) const;
 
   // After every module has read its keys: throws naming every key nobody asked for, with suggestions.
@@ -68,6 +69,7 @@ class ParamReader {
 
  private:
   const Json* find(const std::string& key) const;  // records the lookup
+  std::string near_miss_hint(const std::string& key) const;
   const Json& object() const;
 
   std::shared_ptr<ParamDocument> doc_;

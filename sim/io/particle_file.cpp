@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <sstream>
+#include <string_view>
 #include <system_error>
 
 #include "core/error.h"
@@ -16,6 +18,16 @@ namespace spume {
 namespace {
 
 constexpr const char* kAllowed = ".bgeo, .bgeo.gz, .bhclassic, .bhclassic.gz, .vtk, .vtu, .vtp, .ply, .spf, .spd";
+
+constexpr const char* kHoudiniHint =
+    "export classic .bgeo or .bhclassic geometry from Houdini instead (see the README, Inputs)";
+
+// Houdini's binary JSON geometry starts 7F 'N' 'S' 'J' whatever the file is called.
+bool starts_with_newer_houdini_magic(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  char magic[4] = {};
+  return in.read(magic, 4) && std::string_view(magic, 4) == std::string_view("\x7fNSJ", 4);
+}
 
 void require_file(const std::filesystem::path& path) {
   std::error_code ec;
@@ -92,6 +104,9 @@ ParticleFormat particle_format(const std::filesystem::path& path) {
   if (ends_with(name, ".ply")) return ParticleFormat::Ply;
   if (ends_with(name, ".spf")) return ParticleFormat::FluidCache;
   if (ends_with(name, ".spd")) return ParticleFormat::DiffuseCache;
+  if (ends_with(name, ".sc") || starts_with_newer_houdini_magic(path))
+    fail(path.string(), ": Houdini's newer compressed geometry format (.bgeo.sc, binary JSON) is not supported; ",
+         kHoudiniHint);
   fail(path.string(), ": unknown particle file extension '", path.extension().string(), "'; allowed ", kAllowed);
 }
 

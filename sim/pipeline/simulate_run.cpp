@@ -145,6 +145,7 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
     const int made_last = read_stage_record(cache_dir)->last_frame;
     resume = size_t(std::find(frames.begin(), frames.end(), made_last) - frames.begin());
     if (resume >= frames.size()) resume = 0;
+    if (resume > 0) summary.continued_from = frames[resume];
   }
   summary.why = options.force ? "--force" : match.why;
   remove_stage_record(cache_dir);

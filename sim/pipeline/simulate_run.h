@@ -25,12 +25,13 @@ struct SimulateOptions {
 
 struct SimulateSummary {
   bool reused = false;  // the caches were current; nothing ran
-  int frames = 0;
+  int frames = 0;  // frames simulated (or, reused, found current)
   size_t max_diffuse = 0;
   uint64_t generated = 0;
   double seconds = 0.0;
   std::filesystem::path out_dir;
   std::string why;  // when it ran: what made the caches stale
+  int continued_from = -1;  // the frame a current shorter run was continued from, if one was
 };
 
 std::filesystem::path diffuse_cache_path(const std::filesystem::path& scene_out, int frame);

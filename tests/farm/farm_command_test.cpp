@@ -91,7 +91,7 @@ TEST_F(FarmCommand, ChunksPrintOneFrameSpecPerLine) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.out, "5\n7\n");
   r = run_spume("farm chunks " + args());
-  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.status, 2);  // a usage error
   EXPECT_NE(r.err.find("--chunk N"), std::string::npos) << r.err;
 }
 
@@ -197,10 +197,10 @@ TEST_F(FarmCommand, SubmitWithoutSbatchIsAClearError) {
 
 TEST_F(FarmCommand, SimulateFramesMustBeOneUnbrokenRange) {
   Result r = run_spume("simulate " + args() + " --frames 0-6:2");
-  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.status, 2);  // usage errors
   EXPECT_NE(r.err.find("--frames: \"0-6:2\" is not one unbroken range"), std::string::npos) << r.err;
   r = run_spume("simulate " + args() + " --frames 0-x");
-  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("accepted forms"), std::string::npos) << r.err;
 }
 

@@ -91,7 +91,7 @@ TEST(ReportCommand, QuickSurfaceAndStabilityWriteSaneFiles) {
 
 TEST(ReportCommand, UnknownStudyIsAnErrorNamingTheValueAndTheAllowedOnes) {
   const Result r = run_spume("report --only surface,foam --quiet --out /tmp/spume_report_never");
-  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.status, 2);  // a usage error
   EXPECT_NE(r.output.find("--only: \"foam\" is not a study; allowed: render,diffuse,fluid,surface,stability"),
             std::string::npos)
       << r.output;

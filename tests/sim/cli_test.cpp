@@ -128,7 +128,9 @@ TEST_F(SpumeCommand, BadFluidSettingsAreRejected) {
       {R"({"files": "cache/ParticleData_Fluid_%d.bgeo", "radius": 0})", "/fluid/radius: value 0 must be > 0"},
       {R"({"files": "cache/ParticleData_Fluid_%d.bgeo", "radius": 0.02, "support_radius": -1})",
        "/fluid/support_radius: value -1 must be > 0"},
-      {R"({"files": "cache/ParticleData_Fluid_%d.bgeo"})", "/fluid/radius: missing"},
+      // No typo of "radius" beside it: no hint.
+      {R"({"files": "cache/ParticleData_Fluid_%d.bgeo"})",
+       "/fluid/radius: missing: the fluid particle radius in m is required\n"},
       {R"({"files": "cache/Nothing_%d.bgeo", "radius": 0.02})", "Nothing_%d.bgeo: no files match"},
   };
   for (const auto& [fluid, expected] : cases) {
@@ -268,7 +270,7 @@ TEST_F(SpumeCommand, UsageErrorsExitNonZeroWithHelp) {
   EXPECT_EQ(run_spume("").status, 2);
   EXPECT_EQ(run_spume("frobnicate").status, 2);
   Result r = run_spume("simulate --thread 2 x.json");
-  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.status, 2);  // the command line is wrong: a usage error
   EXPECT_NE(r.output.find("did you mean --threads"), std::string::npos) << r.output;
   r = run_spume("simulate " + (dir / "missing.json").string());
   EXPECT_EQ(r.status, 1);
@@ -277,6 +279,57 @@ TEST_F(SpumeCommand, UsageErrorsExitNonZeroWithHelp) {
   r = run_spume("simulate " + scene());
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.output.find("scene.json:1: not valid JSON"), std::string::npos) << r.output;
+}
+
+// A required key that is missing, next to an unknown key a typo away: the message points at the typo.
+TEST_F(SpumeCommand, MissingKeySuggestsTheNearMissUnknownKey) {
+  write_scene(R"({"fluid": {"files": "cache/ParticleData_Fluid_%d.bgeo", "radus": 0.02}})");
+  const Result r = run_spume("simulate " + scene() + " --out " + out());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("/fluid/radius: missing: the fluid particle radius in m is required (did you mean \"radus\"? "
+                          "it is not a known key)"),
+            std::string::npos)
+      << r.output;
+  EXPECT_FALSE(wrote_anything());
+}
+
+TEST_F(SpumeCommand, DirectoryAsSceneSaysSoAndListsItsScenes) {
+  fs::create_directories(dir / "scenes");
+  std::ofstream(dir / "scenes/b.json") << "{}";
+  std::ofstream(dir / "scenes/a.json") << "{}";
+  std::ofstream(dir / "scenes/notes.txt") << "not a scene";
+  Result r = run_spume("run " + (dir / "scenes").string() + " --out " + out());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find((dir / "scenes").string() + ": is a directory, not a scene file (give one SCENE.json); "
+                          "scene files in it: " + (dir / "scenes/a.json").string() + " " +
+                          (dir / "scenes/b.json").string() + "\n"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("not valid JSON"), std::string::npos) << r.output;
+  r = run_spume("simulate " + (dir / "cache").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find(": is a directory, not a scene file (give one SCENE.json); it holds no .json file"),
+            std::string::npos)
+      << r.output;
+}
+
+// Houdini's newer compressed geometry (.bgeo.sc) is named as such, with the way out, by the scene
+// commands and by info; so is its binary JSON under another name.
+TEST_F(SpumeCommand, NewerHoudiniFilesGetTheExportHint) {
+  const std::string hint = "Houdini's newer compressed geometry format (.bgeo.sc, binary JSON) is not supported; "
+                           "export classic .bgeo or .bhclassic geometry from Houdini instead (see the README, Inputs)";
+  for (int k = 1; k <= 2; ++k) std::ofstream(dir / "cache" / ("sc_" + std::to_string(k) + ".bgeo.sc")) << "compressed";
+  write_scene(R"({"fluid": {"files": "cache/sc_%d.bgeo.sc", "radius": 0.02}})");
+  Result r = run_spume("simulate --quiet " + scene() + " --out " + out());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("sc_1.bgeo.sc: " + hint), std::string::npos) << r.output;
+  r = run_spume("info " + (dir / "cache/sc_2.bgeo.sc").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("sc_2.bgeo.sc: " + hint), std::string::npos) << r.output;
+  std::ofstream(dir / "cache/frame.hgeo", std::ios::binary) << std::string("\x7fNSJ[\x01", 6);
+  r = run_spume("info " + (dir / "cache/frame.hgeo").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("frame.hgeo: " + hint), std::string::npos) << r.output;
 }
 
 }  // namespace

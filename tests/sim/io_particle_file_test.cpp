@@ -72,6 +72,22 @@ TEST(IoParticleFile, ErrorsForUnknownExtensionMissingFileAndDiffuseCache) {
   EXPECT_TRUE(contains(error_of([&] { read_fluid_file(dir.path / "d.spd"); }), "not a fluid frame"));
 }
 
+TEST(IoParticleFile, NewerHoudiniGeometryIsRefusedWithTheExportHint) {
+  TempDir dir;
+  const std::string hint = "Houdini's newer compressed geometry format (.bgeo.sc, binary JSON) is not supported; "
+                           "export classic .bgeo or .bhclassic";
+  const fs::path sc = dir.write("f_1.bgeo.sc", "blosc blocks");
+  const fs::path upper = dir.write("F_2.BGEO.SC", "blosc blocks");
+  const fs::path json = dir.write("f_3.hjson", std::string("\x7fNSJ[", 5));  // binary JSON, any name
+  for (const fs::path& p : {sc, upper, json}) {
+    EXPECT_TRUE(contains(error_of([&] { particle_format(p); }), p.string() + ": " + hint)) << p;
+    EXPECT_TRUE(contains(error_of([&] { describe_particle_file(p); }), hint)) << p;
+  }
+  // Other unknown files keep the list of extensions.
+  const fs::path other = dir.write("f.xyz", "1 2 3");
+  EXPECT_FALSE(contains(error_of([&] { particle_format(other); }), "not supported")) << other;
+}
+
 TEST(IoParticleFile, EmptyFramesAreReadAndNonFinitePositionsRejected) {
   TempDir dir;
   std::ofstream(dir.path / "empty.ply") << "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\n"

@@ -106,11 +106,14 @@ TEST_F(PipelineStages, CurrentCachesAreReusedAndChangesRunTheStagesAgain) {
   EXPECT_FALSE(again.fluid.reused);
   EXPECT_TRUE(fs::is_regular_file(out / "tiny/fluid/fluid_0002.spf"));
 
-  // More frames than cached: the fluid stage runs again to the new last frame.
+  // More frames than cached: the fluid stage runs again to the new last frame; its first frames come
+  // out byte for byte as before, so the diffuse stage continues from its last cached frame.
   json["fluid"]["frames"] = {0, 4};
   again = simulate_scene(scene_of(json), options);
   EXPECT_FALSE(again.fluid.reused);
-  EXPECT_EQ(again.diffuse.frames, 5);
+  EXPECT_EQ(again.diffuse.continued_from, 3);
+  EXPECT_EQ(again.diffuse.frames, 2);  // frame 3 again (not written), then frame 4
+  EXPECT_TRUE(fs::is_regular_file(out / "tiny/diffuse/diffuse_0004.spd"));
 }
 
 // What farms ask before submitting a simulation job: would simulate_scene run anything?

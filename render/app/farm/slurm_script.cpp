@@ -20,7 +20,7 @@ std::string job_name(const std::string& kind, const std::string& scene) {
 }
 
 void check_values(const SlurmFarm& farm) {
-  if (farm.chunks.empty()) fail("spume farm slurm: no frames to render");
+  if (farm.chunks.empty()) fail("no frames to render");  // main names the command
   for (char c : farm.partition)
     if (!is_plain(c, "._-,"))
       fail("--partition: \"", farm.partition, "\" is not a partition name (letters, digits, '.', '_', '-'; "

@@ -43,7 +43,8 @@ std::vector<std::string> parse_only(const std::string& text) {
     const std::string name = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
     const bool known = std::any_of(std::begin(kStudies), std::end(kStudies),
                                    [&](const StudyEntry& e) { return name == e.name; });
-    if (!known) fail("--only: \"", name, "\" is not a study; allowed: ", allowed_studies(), " (comma-separated)");
+    if (!known)
+      cli::usage_fail("--only: \"", name, "\" is not a study; allowed: ", allowed_studies(), " (comma-separated)");
     if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
     if (comma == std::string::npos) break;
     start = comma + 1;
@@ -51,25 +52,12 @@ std::vector<std::string> parse_only(const std::string& text) {
   return names;
 }
 
-}  // namespace
-
-int command_report(const std::vector<std::string>& raw) {
-  const std::vector<cli::OptionSpec> options = {
-      {"quick", false, false, "          smaller problems and fewer settings (on 2 cores: under 3 minutes against 4 for all)"},
-      {"only", true, false, "LIST      studies to run, comma-separated: " + allowed_studies() + " (default: all)"},
-      {"out", true, false, "DIR       output root (default out/): the report goes to DIR/report/, scene caches to "
-                           "DIR/<scene>/"},
-      {"threads", true, false, "N         worker threads (default: one per core)"},
-      {"quiet", false, false, "          no progress on stderr"},
-  };
-  const cli::ParsedArgs args = cli::parse(raw, options, "report");
-  if (args.positional.size() > 1)
-    fail("usage: spume report [SCENE.json, default scenes/wave.json] [options]\n", cli::usage_lines(options));
-  if (args.has("threads")) set_thread_count(cli::parse_int(*args.value("threads"), "--threads", 1, 1024));
+int report_command(const cli::ParsedArgs& args) {
   std::vector<std::string> selected;
   if (auto only = args.value("only")) selected = parse_only(*only);
   else
     for (const auto& e : kStudies) selected.push_back(e.name);
+  if (args.has("threads")) set_thread_count(cli::parse_int(*args.value("threads"), "--threads", 1, 1024));
 
   report::StudyContext context;
   context.scene_path = args.positional.empty() ? "scenes/wave.json" : args.positional[0];
@@ -106,10 +94,29 @@ int command_report(const std::vector<std::string>& raw) {
   header.threads = thread_count();
   header.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   header.command = "spume report";
-  for (const auto& a : raw) header.command += " " + a;
+  for (const auto& a : args.raw) header.command += " " + a;
   report::write_report_markdown(header, results, dir);
   if (!context.quiet) std::printf("Saved: %s\n", (dir / "report.md").string().c_str());
   return 0;
+}
+
+}  // namespace
+
+Command cmd_report() {
+  cli::CommandSpec spec;
+  spec.name = "report";
+  spec.forms = {"[SCENE.json] [options]"};
+  spec.summary = "error against run time of each method, and the stability table -> OUT/report/";
+  spec.notes = {"SCENE.json (default scenes/wave.json) is the scene of the render and diffuse studies"};
+  spec.options = {
+      {"quick", "", "smaller problems and fewer settings (on 2 cores: under 3 minutes against 4 for all)"},
+      {"only", "LIST", "studies to run, comma-separated: " + allowed_studies() + " (default: all)"},
+      {"out", "DIR", "output root (default out/): the report goes to DIR/report/, scene caches to DIR/<scene>/"},
+      {"threads", "N", "worker threads (default: one per core)"},
+      {"quiet", "", "no progress on stderr"},
+  };
+  spec.runs_without_arguments = true;  // the whole report on the default scene
+  return {spec, report_command};
 }
 
 }  // namespace spume

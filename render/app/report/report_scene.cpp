@@ -13,7 +13,7 @@ SceneSetup load_report_scene(const StudyContext& c) {
   args.positional = {c.scene_path.string()};
   args.values["out"] = {c.out_root.string()};
   if (c.quiet) args.values["quiet"];
-  const SceneSetup setup = load_scene_setup(args, scene_command_options(), "report");
+  const SceneSetup setup = load_scene_setup(args);
   SimulateOptions options;
   options.out_root = setup.out_root;
   options.quiet = c.quiet;
