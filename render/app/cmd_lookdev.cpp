@@ -10,6 +10,7 @@
 #include "image/png_io.h"
 #include "render_stage.h"
 #include "scene_args.h"
+#include "scene_lock.h"
 
 namespace spume {
 namespace {
@@ -72,8 +73,10 @@ int lookdev(const cli::ParsedArgs& args) {
   std::filesystem::path output;
   int frame = -1;
   Progress progress("lookdev", combos.size(), args.has("quiet"));
+  std::unique_ptr<OutputLock> lock;  // the caches must not change under the sheet
   for (size_t c = 0; c < combos.size(); ++c) {
     SceneSetup setup = load_scene_setup(args, combos[c]);
+    if (!lock) lock = lock_scene_output(setup, OutputLock::Mode::Shared, "spume lookdev");
     const int full_width = setup.render.width;
     const int tile_width = asked_tile_width.value_or(std::min(full_width, 480));
     setup.render.height = std::max(1, int(std::lround(double(setup.render.height) * tile_width / full_width)));

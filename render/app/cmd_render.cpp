@@ -2,13 +2,17 @@
 // missing, then render.
 #include <cstdio>
 
+#include <limits>
+
 #include "cli_args.h"
+#include "core/frame_spec.h"
 #include "commands.h"
 #include "core/error.h"
 #include "pipeline/simulate_scene.h"
 #include "movie.h"
 #include "render_stage.h"
 #include "scene_args.h"
+#include "scene_lock.h"
 
 namespace spume {
 namespace {
@@ -54,6 +58,7 @@ void finish_render(const RenderStageSummary& s, const cli::ParsedArgs& args, con
 int render(const cli::ParsedArgs& args) {
   if (auto frames = args.value("frames")) cli::check_frame_spec(*frames, "--frames");
   const SceneSetup setup = load_scene_setup(args);
+  const auto lock = lock_scene_output(setup, OutputLock::Mode::Shared, "spume render");
   finish_render(run_render_stage(setup.sim, setup.render, setup.render_keys, stage_options(args, setup)), args,
                 setup);
   return 0;
@@ -66,10 +71,17 @@ int run(const cli::ParsedArgs& args) {
   sim.out_root = setup.out_root;
   sim.quiet = setup.quiet;
   sim.force = args.has("force");
-  // The diffuse simulation starts at the scene's first frame whatever is rendered, so --frames only
-  // limits rendering.
+  // The simulation starts at the scene's first frame whatever is rendered, and runs only as far as
+  // the last frame asked for (a later, longer run continues from there).
+  if (auto spec = args.value("frames")) {
+    const std::vector<int> asked = parse_frame_spec(*spec, 0, std::numeric_limits<int>::max(), "--frames");
+    sim.frames = std::make_pair(setup.sim.frames ? setup.sim.frames->first : 0, asked.back());
+  }
   const bool diffuse = setup.render.draws_diffuse();
+  auto lock = lock_scene_output(setup, OutputLock::Mode::Exclusive, "spume run");
   const SceneSimulation simulated = simulate_scene(setup.sim, sim, diffuse);
+  lock.reset();  // the render shares the folder with renders of the same keys
+  lock = lock_scene_output(setup, OutputLock::Mode::Shared, "spume run");
   if (!setup.quiet) {
     std::fprintf(stderr, "stages of %s:\n", setup.sim.name.c_str());
     if (setup.sim.source == FluidSourceKind::Solver)

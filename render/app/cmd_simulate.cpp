@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "pipeline/simulate_scene.h"
 #include "scene_args.h"
+#include "scene_lock.h"
 
 namespace spume {
 namespace {
@@ -21,6 +22,7 @@ int simulate(const cli::ParsedArgs& args) {
   sim.quiet = setup.quiet;
   sim.force = args.has("force");
   if (frames) sim.frames = *frames;
+  const auto lock = lock_scene_output(setup, OutputLock::Mode::Exclusive, "spume simulate");
   const SceneSimulation result = simulate_scene(setup.sim, sim);
   if (!setup.quiet) {
     if (result.fluid.reused) std::fprintf(stderr, "fluid: caches are current, solver not run\n");

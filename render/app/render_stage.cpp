@@ -108,7 +108,12 @@ std::string frame_record(const PreparedRender& p, const nlohmann::json& render_k
   };
   nlohmann::json record = {{"render", render_keys}, {"sequence", p.sequence_digest}};
   if (p.settings.draws_diffuse()) record["diffuse"] = identity(diffuse_cache_path(p.scene_out, frame));
-  if (p.settings.draw_surface) record["fluid"] = identity(expand_frame_pattern(p.inputs.survey.pattern, frame));
+  if (p.settings.draw_surface) {
+    const std::filesystem::path fluid = expand_frame_pattern(p.inputs.survey.pattern, frame);
+    // A gap filled by interpolation (fluid.allow_gaps) depends on its neighbours, which the sequence
+    // digest covers.
+    record["fluid"] = std::filesystem::exists(fluid) ? identity(fluid) : nlohmann::json("interpolated");
+  }
   return record.dump();
 }
 

@@ -15,6 +15,21 @@ std::string name_from_pattern(const std::string& pattern) {
   return stem.empty() ? "fluid" : stem;
 }
 
+// --tank auto, or the six corner coordinates "x0,y0,z0,x1,y1,z1" of an open tank.
+Json tank_from_option(const std::string& text) {
+  if (text == "auto") return {{"type", "tank"}, {"infer", true}};
+  std::vector<double> v;
+  size_t start = 0;
+  while (start <= text.size()) {
+    const size_t comma = std::min(text.find(',', start), text.size());
+    v.push_back(cli::parse_double(text.substr(start, comma - start), "--tank"));
+    start = comma + 1;
+  }
+  if (v.size() != 6)
+    cli::usage_fail("--tank \"", text, "\": expected auto or six numbers x0,y0,z0,x1,y1,z1 (m), found ", v.size());
+  return {{"type", "tank"}, {"min", {v[0], v[1], v[2]}}, {"max", {v[3], v[4], v[5]}}};
+}
+
 }  // namespace
 
 std::vector<cli::OptionSpec> scene_command_options() {
@@ -26,6 +41,9 @@ std::vector<cli::OptionSpec> scene_command_options() {
       {"fluid", "PATTERN", "fluid files with every default, no scene file (e.g. 'cache/ParticleData_Fluid_%d.bgeo')"},
       {"radius", "R", "with --fluid: the fluid particle radius in m"},
       {"fps", "F", "with --fluid: frames per second of the fluid files (default 50)"},
+      {"tank", "auto|X0,Y0,Z0,X1,Y1,Z1",
+       "with --fluid: the container, inferred from the fluid (auto) or its corners in m; open at the top"},
+      {"allow-gaps", "", "frames missing from the fluid files are interpolated between their neighbours"},
   };
 }
 
@@ -38,6 +56,7 @@ SceneSetup load_scene_setup(const cli::ParsedArgs& args, const std::vector<std::
   if (args.has("threads")) set_thread_count(cli::parse_int(*args.value("threads"), "--threads", 1, 1024));
   std::vector<std::string> overrides = args.all("set");
   overrides.insert(overrides.end(), extra_overrides.begin(), extra_overrides.end());
+  if (args.has("allow-gaps")) overrides.push_back("fluid.allow_gaps=true");
   LoadedScene loaded = [&] {
     if (args.has("fluid")) {
       if (!args.positional.empty())
@@ -49,9 +68,11 @@ SceneSetup load_scene_setup(const cli::ParsedArgs& args, const std::vector<std::
                       {"files", *args.value("fluid")},
                       {"radius", cli::parse_double(*args.value("radius"), "--radius")},
                       {"fps", args.has("fps") ? cli::parse_double(*args.value("fps"), "--fps") : 50.0}}}};
+      if (auto tank = args.value("tank")) scene["solids"] = Json::array({tank_from_option(*tank)});
       return scene_from_json(std::move(scene), "--fluid", ".", "fluid", overrides);
     }
-    if (args.has("radius") || args.has("fps")) cli::usage_fail("--radius and --fps go with --fluid");
+    if (args.has("radius") || args.has("fps") || args.has("tank"))
+      cli::usage_fail("--radius, --fps and --tank go with --fluid (a scene file lists its tank under \"solids\")");
     if (args.positional.empty()) cli::usage_fail("no scene: give SCENE.json, or --fluid PATTERN --radius R");
     return load_scene_file(args.positional[0], overrides);
   }();

@@ -10,7 +10,19 @@ namespace spume {
 
 void Camera::basis(Vec3f& right, Vec3f& true_up, Vec3f& back) const {
   back = (position - target).normalized();
-  right = up.cross(back).normalized();
+  Vec3f side = up.cross(back);
+  // Looking straight along the up vector (a top-down view) leaves no sideways direction: take the
+  // world axis least aligned with the view instead (for a view straight down on +y up: -z is the
+  // top of the picture), so the picture is never blank.
+  if (side.norm() < 1e-4f * up.norm()) {
+    int axis = 2;  // z first: a top-down view keeps x to the right
+    for (int a : {0, 1})
+      if (std::abs(back[a]) < std::abs(back[axis]) - 1e-4f) axis = a;
+    Vec3f fallback = Vec3f::Zero();
+    fallback[axis] = axis == 2 ? -1.0f : 1.0f;
+    side = fallback.cross(back);
+  }
+  right = side.normalized();
   true_up = back.cross(right);
 }
 

@@ -4,10 +4,23 @@
 #include <fstream>
 #include <system_error>
 #include <unistd.h>
+#include <signal.h>
+
+#include <cerrno>
+#include <cstdlib>
 
 #include "error.h"
 
 namespace spume {
+namespace {
+
+std::string host_name() {
+  char host[256] = {};
+  if (::gethostname(host, sizeof host - 1) != 0 || !host[0]) std::snprintf(host, sizeof host, "unknown");
+  return host;
+}
+
+}  // namespace
 
 void write_file_atomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write) {
   namespace fs = std::filesystem;
@@ -17,10 +30,8 @@ void write_file_atomically(const std::filesystem::path& path, const std::functio
     if (ec) fail(path.string(), ": cannot create directory ", path.parent_path().string(), ": ", ec.message());
   }
   // Unique per host and process: farm nodes share output folders, and pids repeat across hosts.
-  char host[256] = {};
-  if (::gethostname(host, sizeof host - 1) != 0 || !host[0]) std::snprintf(host, sizeof host, "unknown");
   fs::path tmp = path;
-  tmp += str(".tmp.", host, ".", ::getpid());
+  tmp += str(".tmp.", host_name(), ".", ::getpid());
   try {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) fail(path.string(), ": cannot open ", tmp.string(), " for writing");
@@ -34,6 +45,27 @@ void write_file_atomically(const std::filesystem::path& path, const std::functio
     fs::remove(tmp, ec);
     throw;
   }
+}
+
+int remove_dead_temporaries(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) return 0;
+  const std::string here = host_name();
+  int removed = 0;
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    const size_t mark = name.rfind(".tmp.");
+    const size_t last_dot = name.rfind('.');
+    if (mark == std::string::npos || last_dot <= mark + 4) continue;
+    const std::string host = name.substr(mark + 5, last_dot - mark - 5), pid_text = name.substr(last_dot + 1);
+    if (host != here || pid_text.empty() || pid_text.find_first_not_of("0123456789") != std::string::npos) continue;
+    const long pid = std::strtol(pid_text.c_str(), nullptr, 10);
+    // Signal 0 only asks whether the process exists; ESRCH: it does not. (EPERM: it exists.)
+    if (pid <= 0 || ::kill(pid_t(pid), 0) == 0 || errno != ESRCH) continue;
+    if (fs::remove(entry.path(), ec)) ++removed;
+  }
+  return removed;
 }
 
 }  // namespace spume

@@ -12,4 +12,8 @@ namespace spume {
 // Throws Error naming the path if anything fails; the temporary file is removed on failure.
 void write_file_atomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write);
 
+// Removes the temporary files in `dir` (not below it) that writers on this host left when they died
+// (their pid no longer runs). Files of live processes and of other hosts are kept. Returns how many.
+int remove_dead_temporaries(const std::filesystem::path& dir);
+
 }  // namespace spume

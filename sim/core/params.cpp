@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "error.h"
 
@@ -69,6 +70,10 @@ std::optional<double> ParamReader::optional_number(const std::string& key) const
   if (!v->is_number()) fail_at(key, str("expected a number, found ", v->dump()));
   const double d = v->get<double>();
   if (!std::isfinite(d)) fail_at(key, str("expected a finite number, found ", d));
+  // Numbers are stored as 32-bit floats in most places (positions, rates, thresholds): one beyond
+  // that range would become infinity there and silently break the run.
+  if (std::abs(d) > double(std::numeric_limits<float>::max()))
+    fail_at(key, str("value ", d, " is too large: every number must fit a 32-bit float (at most about 3.4e38)"));
   return d;
 }
 
@@ -85,6 +90,8 @@ double ParamReader::number_in(const std::string& key, double fallback, double lo
 double ParamReader::positive(const std::string& key, double fallback) const {
   const double v = number(key, fallback);
   if (!(v > 0)) fail_at(key, str("value ", v, " must be > 0"));
+  if (v < double(std::numeric_limits<float>::min()))
+    fail_at(key, str("value ", v, " is too small: it would be 0 as a 32-bit float (positive values start at about 1.2e-38)"));
   return v;
 }
 
@@ -151,7 +158,11 @@ std::pair<double, double> ParamReader::range(const std::string& key, std::pair<d
     fail_at(key, str("expected [min, max], found ", v->dump()));
   const double lo = (*v)[0].get<double>(), hi = (*v)[1].get<double>();
   if (!std::isfinite(lo) || !std::isfinite(hi)) fail_at(key, str("expected finite numbers, found ", v->dump()));
-  if (!(lo < hi)) fail_at(key, str("min ", lo, " must be below max ", hi, " (the clamp divides by max - min)"));
+  if (std::abs(lo) > double(std::numeric_limits<float>::max()) || std::abs(hi) > double(std::numeric_limits<float>::max()))
+    fail_at(key, str("values ", v->dump(), " are too large: every number must fit a 32-bit float (at most about 3.4e38)"));
+  // Compared as stored (32-bit floats): values closer than that resolves would divide by zero.
+  if (!(float(lo) < float(hi)))
+    fail_at(key, str("min ", lo, " must be below max ", hi, " (the clamp divides by max - min)"));
   return {lo, hi};
 }
 

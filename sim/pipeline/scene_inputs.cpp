@@ -6,6 +6,7 @@
 #include "io/frame_pattern.h"
 #include "pipeline/fluid_stage.h"
 #include "scene/container.h"
+#include "scene/fluid_source.h"
 
 namespace spume {
 namespace {
@@ -48,6 +49,9 @@ SceneInputs read_scene_inputs(const SimScene& scene, const std::filesystem::path
   std::filesystem::create_directories(scene_out, ec);
   in.survey = survey_fluid_files(pattern, frames, scene.fluid.particle_radius, scene_out / "fluid_survey.json", quiet);
 
+  if (const std::vector<int> missing = missing_frames(frames); !missing.empty() && scene.allow_gaps)
+    in.notes.push_back(str("fluid.allow_gaps: ", missing.size(), " missing fluid frame", missing.size() > 1 ? "s" : "",
+                           " (the first is ", missing.front(), ") interpolated between the frames on either side"));
   in.solids = scene.solids;
   if (scene.infer_container) {
     const InferredContainer c = infer_container(in.survey, scene.fluid.particle_radius, up_axis(scene.gravity));

@@ -28,16 +28,36 @@ std::string frame_name(const char* prefix, int frame, const char* extension) {
 
 }  // namespace
 
+namespace {
+
+// A sequence with a hole would be stepped across silently; the user decides (fluid.allow_gaps).
+void check_no_gaps(const std::vector<int>& frames, const FluidSource& source) {
+  const std::vector<int> missing = missing_frames(frames);
+  if (missing.empty()) return;
+  std::string list;
+  for (size_t k = 0; k < std::min<size_t>(missing.size(), 8); ++k) list += str(k ? ", " : "", missing[k]);
+  if (missing.size() > 8) list += str(" and ", missing.size() - 8, " more");
+  fail(source.describe(), ": fluid frame ", missing.front(), " is missing (", missing.size() == 1 ? "frame " : "frames ",
+       list, "); re-export it, limit fluid.frames to a range without gaps, or set fluid.allow_gaps to true "
+       "(--allow-gaps) to interpolate missing frames between their neighbours");
+}
+
+}  // namespace
+
 std::vector<int> diffuse_frames_to_run(const SimScene& scene, const FluidSource& source,
                                        const SimulateOptions& options) {
   std::vector<int> available = source.frame_numbers();
   const auto range = options.frames ? options.frames : scene.frames;
-  if (!range) return available;
+  if (!range) {
+    check_no_gaps(available, source);
+    return available;
+  }
   std::vector<int> chosen;
   for (int f : available)
     if (f >= range->first && f <= range->second) chosen.push_back(f);
   if (chosen.empty())
     fail("frames ", range->first, "-", range->second, ": none of them exist in ", source.describe());
+  check_no_gaps(chosen, source);
   return chosen;
 }
 

@@ -44,6 +44,7 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
     if (!files) fluid.fail_at("files", "missing: a file pattern such as \"cache/ParticleData_Fluid_%d.bgeo\"");
     const std::filesystem::path pattern(*files);
     scene.file_pattern = pattern.is_absolute() ? pattern.string() : (scene_dir / pattern).lexically_normal().string();
+    scene.allow_gaps = fluid.boolean("allow_gaps", false);
   }
   if (scene.source == FluidSourceKind::Solver) {
     scene.solver = read_fluid_solver(fluid, scene.gravity);

@@ -20,6 +20,7 @@ struct SimScene {
   std::string name;                     // output folder name: OUT/<name>/
   FluidSourceKind source = FluidSourceKind::Files;
   std::string file_pattern;             // Files: resolved against the scene file's folder
+  bool allow_gaps = false;              // Files: frames missing between files are interpolated
   FluidSequenceInfo fluid;
   std::optional<std::pair<int, int>> frames;  // inclusive frame range to use, if limited
   Vec3f gravity = Vec3f(0.0f, -9.81f, 0.0f);  // m/s^2

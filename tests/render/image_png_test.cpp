@@ -75,6 +75,25 @@ TEST(PngIo, WriteIsAtomicAndCreatesDirectories) {
   EXPECT_EQ(files, 1u) << "a temporary file was left behind";
 }
 
+TEST(PngIo, TheFramesRecordTravelsWithItsPixels) {
+  const fs::path dir = test_dir("record");
+  const fs::path with = dir / "with.png", without = dir / "without.png";
+  const std::string record = R"({"render":{"alpha":60},"diffuse":[123,0,3735928559]})";
+  write_png(with, random_image(20, 10, 3), record);
+  write_png(without, random_image(20, 10, 3));
+  EXPECT_EQ(read_png_record(with), record);
+  EXPECT_EQ(read_png(with).rgb, random_image(20, 10, 3).rgb);  // pixels unchanged by the text
+  EXPECT_FALSE(read_png_record(without));
+  EXPECT_FALSE(read_png_record(dir / "missing.png"));
+  write_bytes(dir / "not.png", {1, 2, 3});
+  EXPECT_FALSE(read_png_record(dir / "not.png"));
+  // Cut inside the text chunk: no record, no crash.
+  std::vector<uint8_t> bytes = read_bytes(with);
+  bytes.resize(60);
+  write_bytes(dir / "cut.png", bytes);
+  EXPECT_FALSE(read_png_record(dir / "cut.png"));
+}
+
 TEST(PngIo, ReadsRgbaDroppingAlpha) {
   const fs::path dir = test_dir("rgba");
   std::vector<uint8_t> rgba = {10, 20, 30, 0, 200, 150, 100, 255, 1, 2, 3, 128, 4, 5, 6, 7};
