@@ -19,6 +19,8 @@ namespace {
 
 using Json = nlohmann::json;
 
+constexpr int kSurveyVersion = 2;  // bump when what a frame's entry holds changes
+
 Json to_json(const FrameSurvey& f) {
   return {{"frame", f.frame},
           {"size", f.file.size},
@@ -27,7 +29,7 @@ Json to_json(const FrameSurvey& f) {
           {"particles", f.particles},
           {"min", {f.bounds.min.x(), f.bounds.min.y(), f.bounds.min.z()}},
           {"max", {f.bounds.max.x(), f.bounds.max.y(), f.bounds.max.z()}},
-          {"pressed", f.pressed}};
+          {"sheet", f.sheet}};
 }
 
 FrameSurvey frame_from_json(const Json& j) {
@@ -39,7 +41,7 @@ FrameSurvey frame_from_json(const Json& j) {
   f.particles = j.at("particles").get<uint64_t>();
   for (int a = 0; a < 3; ++a) f.bounds.min[a] = j.at("min").at(size_t(a)).get<float>();
   for (int a = 0; a < 3; ++a) f.bounds.max[a] = j.at("max").at(size_t(a)).get<float>();
-  f.pressed = j.at("pressed").get<std::array<uint64_t, 6>>();
+  f.sheet = j.at("sheet").get<std::array<float, 6>>();
   return f;
 }
 
@@ -52,14 +54,14 @@ struct Kept {
   FileIdentity spacing_file;
 };
 
-Kept read_kept(const std::filesystem::path& keep, const std::string& pattern, float layer) {
+Kept read_kept(const std::filesystem::path& keep, const std::string& pattern) {
   Kept kept;
   if (keep.empty()) return kept;
   std::ifstream in(keep);
   if (!in) return kept;
   try {
     const Json j = Json::parse(in);
-    if (j.at("pattern").get<std::string>() != pattern || j.at("layer").get<float>() != layer) return kept;
+    if (j.at("pattern").get<std::string>() != pattern || j.at("version").get<int>() != kSurveyVersion) return kept;
     for (const Json& f : j.at("frames")) kept.frames.push_back(frame_from_json(f));
     kept.spacing = j.at("spacing").get<float>();
     kept.spacing_frame = j.at("spacing_frame").get<int>();
@@ -79,15 +81,30 @@ Aabb FluidSurvey::bounds() const {
   return box;
 }
 
-FrameSurvey survey_positions(const std::vector<Vec3f>& positions, float layer) {
+FrameSurvey survey_positions(const std::vector<Vec3f>& positions) {
   FrameSurvey f;
   f.particles = positions.size();
-  for (const Vec3f& p : positions) f.bounds.extend(p);
-  for (const Vec3f& p : positions)
-    for (int a = 0; a < 3; ++a) {
-      f.pressed[size_t(2 * a)] += p[a] <= f.bounds.min[a] + layer;
-      f.pressed[size_t(2 * a + 1)] += p[a] >= f.bounds.max[a] - layer;
+  // The 4 outermost coordinates per side, kept sorted outermost first (low sides: smallest).
+  constexpr size_t kSheetRank = 4;
+  std::array<std::array<float, kSheetRank>, 6> outer;
+  for (size_t side = 0; side < 6; ++side) outer[side].fill(side % 2 == 0 ? INFINITY : -INFINITY);
+  for (const Vec3f& p : positions) {
+    f.bounds.extend(p);
+    for (size_t side = 0; side < 6; ++side) {
+      // Sides are compared as "more outward is smaller": negate the high sides.
+      const float v = side % 2 == 0 ? p[int(side / 2)] : -p[int(side / 2)];
+      auto& o = outer[side];
+      const float worst = side % 2 == 0 ? o[kSheetRank - 1] : -o[kSheetRank - 1];
+      if (!(v < worst)) continue;
+      size_t k = kSheetRank - 1;
+      while (k > 0 && v < (side % 2 == 0 ? o[k - 1] : -o[k - 1])) o[k] = o[k - 1], --k;
+      o[k] = side % 2 == 0 ? v : -v;
     }
+  }
+  for (size_t side = 0; side < 6; ++side) {
+    const size_t rank = std::min<size_t>(kSheetRank, std::max<size_t>(positions.size(), 1)) - 1;
+    f.sheet[side] = positions.empty() ? 0.0f : outer[side][rank];
+  }
   return f;
 }
 
@@ -109,14 +126,13 @@ float median_spacing(const std::vector<Vec3f>& positions, size_t samples) {
   return nearest[count / 2];
 }
 
-FluidSurvey survey_fluid_files(const std::string& pattern, const std::vector<int>& frames, float layer,
+FluidSurvey survey_fluid_files(const std::string& pattern, const std::vector<int>& frames,
                                const std::filesystem::path& keep, bool quiet) {
   if (frames.empty()) fail(pattern, ": no frames to survey");
   FluidSurvey survey;
   survey.pattern = pattern;
-  survey.layer = layer;
   survey.frames.resize(frames.size());
-  const Kept kept = read_kept(keep, pattern, layer);
+  const Kept kept = read_kept(keep, pattern);
 
   std::vector<size_t> todo;
   for (size_t k = 0; k < frames.size(); ++k) {
@@ -150,7 +166,7 @@ FluidSurvey survey_fluid_files(const std::string& pattern, const std::vector<int
       try {
         const FluidFrame frame = read_fluid_file(path);
         const FileIdentity id = f.file;
-        f = survey_positions(frame.positions, layer);
+        f = survey_positions(frame.positions);
         f.frame = frames[todo[t]];
         f.file = id;
       } catch (const Error& error) {
@@ -170,7 +186,7 @@ FluidSurvey survey_fluid_files(const std::string& pattern, const std::vector<int
 
   if (!keep.empty()) {
     Json j = {{"pattern", pattern},
-              {"layer", layer},
+              {"version", kSurveyVersion},
               {"spacing", survey.spacing},
               {"spacing_frame", frames.front()},
               {"spacing_size", first_file.size},

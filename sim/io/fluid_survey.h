@@ -20,14 +20,13 @@ struct FrameSurvey {
   FileIdentity file;
   uint64_t particles = 0;
   Aabb bounds;
-  // Particles within `layer` of each side of the bounds: -x, +x, -y, +y, -z, +z. A sheet of them
-  // says the fluid presses against something flat there.
-  std::array<uint64_t, 6> pressed{};
+  // Per side (-x, +x, -y, +y, -z, +z), the coordinate of the 4th outermost particle: where the fluid
+  // presses against something flat, a sheet sits there; a few stray particles do not move it.
+  std::array<float, 6> sheet{};
 };
 
 struct FluidSurvey {
   std::string pattern;
-  float layer = 0.0f;             // m: how close to a side counts as pressing against it
   std::vector<FrameSurvey> frames;  // in frame order
   // Median distance from a particle to its nearest neighbour in the first frame (a sample of up to
   // 512 particles): the cache's particle spacing, to check the radius the user gave against.
@@ -38,11 +37,11 @@ struct FluidSurvey {
 // Surveys `frames` of `pattern` (they must exist), reusing what `keep` records for files whose
 // identity is unchanged, and rewrites `keep` (atomically) when anything was surveyed. `keep` may be
 // empty: nothing is read or written. Frames are read in parallel. Progress on stderr unless quiet.
-FluidSurvey survey_fluid_files(const std::string& pattern, const std::vector<int>& frames, float layer,
+FluidSurvey survey_fluid_files(const std::string& pattern, const std::vector<int>& frames,
                                const std::filesystem::path& keep, bool quiet);
 
 // One frame's entry from particle positions (exposed for tests).
-FrameSurvey survey_positions(const std::vector<Vec3f>& positions, float layer);
+FrameSurvey survey_positions(const std::vector<Vec3f>& positions);
 // Median nearest-neighbour distance over up to `samples` evenly strided particles.
 float median_spacing(const std::vector<Vec3f>& positions, size_t samples = 512);
 

@@ -47,7 +47,7 @@ SceneInputs read_scene_inputs(const SimScene& scene, const std::filesystem::path
                                                            scene.frames->second) : std::string());
   std::error_code ec;
   std::filesystem::create_directories(scene_out, ec);
-  in.survey = survey_fluid_files(pattern, frames, scene.fluid.particle_radius, scene_out / "fluid_survey.json", quiet);
+  in.survey = survey_fluid_files(pattern, frames, scene_out / "fluid_survey.json", quiet);
 
   if (const std::vector<int> missing = missing_frames(frames); !missing.empty() && scene.allow_gaps)
     in.notes.push_back(str("fluid.allow_gaps: ", missing.size(), " missing fluid frame", missing.size() > 1 ? "s" : "",

@@ -8,8 +8,6 @@
 namespace spume {
 namespace {
 
-// A sheet, not a few stray particles: what the side of a small block holds already.
-constexpr uint64_t kSheet = 16;
 // Pressing in this share of the frames from the first arrival on makes a wall.
 constexpr float kWallShare = 0.6f;
 
@@ -30,19 +28,35 @@ InferredContainer infer_container(const FluidSurvey& survey, float particle_radi
   for (int side = 0; side < 6; ++side) {
     const int axis = side / 2;
     const bool low = side % 2 == 0;
-    const float extreme = low ? all.min[axis] : all.max[axis];
-    c.plane[size_t(side)] = extreme;
+    auto reach = [&](const FrameSurvey& f) { return f.sheet[size_t(side)]; };
+    c.plane[size_t(side)] = low ? all.min[axis] : all.max[axis];
     if (axis == up_axis && !low) continue;  // no lid
+    // The wall's plane: the sheet position most frames agree on (within r), the outermost of equals.
+    // Frames whose sheet lies beyond it (spray thrown over a rim) may be at most a quarter.
+    const size_t n = survey.frames.size();
+    size_t best_support = 0;
+    float extreme = reach(survey.frames.front());
+    for (const FrameSurvey& candidate : survey.frames) {
+      const float e = reach(candidate);
+      size_t support = 0;
+      for (const FrameSurvey& f : survey.frames) support += std::abs(reach(f) - e) <= particle_radius;
+      const bool outer = low ? e < extreme : e > extreme;
+      if (support > best_support || (support == best_support && outer)) best_support = support, extreme = e;
+    }
+    // Within the frames that agree, the outermost sheet: the one closest to the wall.
+    const float agreed = extreme;
+    for (const FrameSurvey& f : survey.frames)
+      if (std::abs(reach(f) - agreed) <= particle_radius) extreme = low ? std::min(extreme, reach(f)) : std::max(extreme, reach(f));
+    size_t beyond = 0;
+    for (const FrameSurvey& f : survey.frames) beyond += (low ? extreme - reach(f) : reach(f) - extreme) > particle_radius;
+    if (4 * beyond > n) continue;
     int first = -1, pressing = 0;
-    for (size_t k = 0; k < survey.frames.size(); ++k) {
-      const FrameSurvey& f = survey.frames[k];
-      const float reach = low ? f.bounds.min[axis] : f.bounds.max[axis];
-      const bool touches = std::abs(reach - extreme) <= particle_radius && f.pressed[size_t(side)] >= kSheet;
+    for (size_t k = 0; k < n; ++k) {
+      const bool touches = std::abs(reach(survey.frames[k]) - extreme) <= particle_radius;
       if (touches && first < 0) first = int(k);
       if (first >= 0) pressing += touches;
     }
-    if (first < 0) continue;
-    const float share = float(pressing) / float(survey.frames.size() - size_t(first));
+    const float share = float(pressing) / float(n - size_t(first));
     c.pressed_share[size_t(side)] = share;
     if (share < kWallShare) continue;
     c.wall[size_t(side)] = true;

@@ -1,7 +1,8 @@
 #pragma once
 // The container a fluid cache was simulated in, inferred from the sequence alone: an axis-aligned
-// side is a wall when the fluid presses a sheet of particles against one plane there in most frames
-// from the first time it arrives, and never crosses it. Caches from other simulators seldom carry
+// side is a wall when the fluid presses a sheet of particles (4 or more within r of its extreme)
+// against one plane there in at least 60% of the frames from the first time it arrives, and no
+// sheet goes beyond it. Lone particles beyond (spray over a rim) are ignored. Caches from other simulators seldom carry
 // their geometry; without walls the diffuse model cannot tell a wet wall from open air.
 #include <array>
 #include <optional>
