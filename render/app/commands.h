@@ -12,5 +12,6 @@ int command_lookdev(const std::vector<std::string>& args);
 int command_farm(const std::vector<std::string>& args);
 int command_info(const std::vector<std::string>& args);
 int command_report(const std::vector<std::string>& args);
+int command_compare(const std::vector<std::string>& args);
 
 }  // namespace spume

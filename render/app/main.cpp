@@ -20,6 +20,7 @@ constexpr const char* kUsage =
     "  farm chunks|slurm SCENE  frame chunks for GNU parallel, or a Slurm array job (simulation first)\n"
     "  info FILE...      what a particle file or cache holds\n"
     "  report [SCENE]    error against run time of each method, and the stability table -> OUT/report/\n"
+    "  compare REF NEW   image regression of two frame sequences (or images): report.html, summary.csv/json\n"
     "run 'spume COMMAND' without arguments for its options.\n";
 
 struct Command {
@@ -36,7 +37,8 @@ int main(int argc, char** argv) {
                              {"lookdev", spume::command_lookdev},
                              {"farm", spume::command_farm},
                              {"info", spume::command_info},
-                             {"report", spume::command_report}};
+                             {"report", spume::command_report},
+                             {"compare", spume::command_compare}};
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
     std::fputs(kUsage, argc < 2 ? stderr : stdout);
     return argc < 2 ? 2 : 0;
