@@ -59,6 +59,7 @@ TEST(CompareCommand, IdenticalSequencesPassWithZeroErrorAndInfinitePsnr) {
   EXPECT_NE(r.output.find("PASS, 3 frames: 0 fail, 3 pass (3 identical)"), std::string::npos) << r.output;
   const auto rows = read_csv(dir / "out" / "summary.csv");
   ASSERT_EQ(rows.size(), 5u);  // header, 3 frames, overall
+  for (const auto& row : rows) EXPECT_EQ(row.size(), 23u);
   for (int f = 0; f < 3; ++f) {
     auto row = csv_row(dir / "out", frame_name(f));
     EXPECT_EQ(row["status"], "identical");

@@ -4,6 +4,7 @@
 // Gaussian weight that falls on the pixel.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "compare_test_support.h"
@@ -24,6 +25,12 @@ TEST(Ssim, IdenticalImagesGiveExactlyOne) {
   ASSERT_TRUE(r.defined);
   EXPECT_EQ(r.mean, 1.0);
   for (double c : r.channel) EXPECT_EQ(c, 1.0);
+  // The shortcut the command takes for identical frames gives the same.
+  const SsimResult quick = ssim_of_identical(40, 30);
+  EXPECT_TRUE(quick.defined);
+  EXPECT_EQ(quick.mean, r.mean);
+  EXPECT_EQ(quick.channel, r.channel);
+  EXPECT_FALSE(ssim_of_identical(10, 30).defined);
 }
 
 TEST(Ssim, ConstantOffsetIsTheLuminanceTermAlone) {
@@ -59,6 +66,42 @@ TEST(Ssim, OnePixelInAFlatImageFromTheWindowWeights) {
   EXPECT_EQ(r.channel[2], 1.0);
   EXPECT_NEAR(r.mean, (red + 2.0) / 3.0, 1e-12);
   EXPECT_LT(red, 0.99);  // clearly below 1: the window centred on the pixel gives it weight 0.07
+}
+
+// The definition evaluated directly: the 2-D window summed at every position, no separable
+// passes, no bands, variances from centred sums.
+double direct_ssim(const ImageRGB8& a, const ImageRGB8& b, int c) {
+  double w[11][11], total = 0;
+  for (int i = 0; i < 11; ++i)
+    for (int j = 0; j < 11; ++j) total += w[i][j] = std::exp(-((i - 5) * (i - 5) + (j - 5) * (j - 5)) / 4.5);
+  double sum = 0;
+  for (int y0 = 0; y0 + 11 <= a.height; ++y0)
+    for (int x0 = 0; x0 + 11 <= a.width; ++x0) {
+      double mx = 0, my = 0;
+      for (int i = 0; i < 11; ++i)
+        for (int j = 0; j < 11; ++j) {
+          mx += w[i][j] / total * a.at(x0 + j, y0 + i)[c];
+          my += w[i][j] / total * b.at(x0 + j, y0 + i)[c];
+        }
+      double vx = 0, vy = 0, cxy = 0;
+      for (int i = 0; i < 11; ++i)
+        for (int j = 0; j < 11; ++j) {
+          const double dx = a.at(x0 + j, y0 + i)[c] - mx, dy = b.at(x0 + j, y0 + i)[c] - my;
+          vx += w[i][j] / total * dx * dx, vy += w[i][j] / total * dy * dy, cxy += w[i][j] / total * dx * dy;
+        }
+      sum += (2 * mx * my + C1) * (2 * cxy + C2) / ((mx * mx + my * my + C1) * (vx + vy + C2));
+    }
+  return sum / ((a.width - 10) * (a.height - 10));
+}
+
+TEST(Ssim, MatchesTheDefinitionEvaluatedDirectly) {
+  // 90 rows: output rows cross the 32-row bands the implementation works in.
+  const ImageRGB8 a = test::random_image(37, 90, 21);
+  ImageRGB8 b = a;
+  for (size_t i = 0; i < b.rgb.size(); i += 5) b.rgb[i] = uint8_t(std::min(255, b.rgb[i] + int(i % 40)));
+  const SsimResult r = ssim_rgb(a, b);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(r.channel[size_t(c)], direct_ssim(a, b, c), 1e-12) << "channel " << c;
+  EXPECT_LT(r.mean, 0.999);  // the edit is seen
 }
 
 TEST(Ssim, UndefinedBelowTheWindowAndSizesMustMatch) {

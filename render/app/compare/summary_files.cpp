@@ -40,6 +40,14 @@ std::string csv_field(const std::string& s) {
   return q + "\"";
 }
 
+void append_row(std::string& out, const std::vector<std::string>& cells) {
+  for (size_t k = 0; k < cells.size(); ++k) {
+    if (k) out += ',';
+    out += csv_field(cells[k]);
+  }
+  out += '\n';
+}
+
 std::vector<size_t> ranks(const std::vector<FrameResult>& results) {
   std::vector<size_t> rank(results.size());
   const std::vector<size_t> order = worst_first(results);
@@ -73,8 +81,7 @@ std::string summary_csv(const CompareReport& rep) {
       f.insert(f.end(), 14, "");
     }
     f.push_back(r.diff_image), f.push_back(r.heat_image);
-    for (size_t k = 0; k < f.size(); ++k) out += (k ? "," : "") + csv_field(f[k]);
-    out += "\n";
+    append_row(out, f);
   }
   // The overall row: counts summed, the worst of every figure (largest share, difference and
   // mean, smallest PSNR and SSIM).
@@ -90,8 +97,8 @@ std::string summary_csv(const CompareReport& rep) {
                                 any ? std::to_string(o.max_diff) : "", any ? format_fixed(o.mean_diff, 6) : "", "",
                                 any ? format_fixed(o.min_psnr_db, 4) : "",
                                 o.min_ssim ? format_fixed(*o.min_ssim, 6) : "", "", "", "", "", ""};
-  for (size_t k = 0; k < f.size(); ++k) out += (k ? "," : "") + csv_field(f[k]);
-  return out + "\n";
+  append_row(out, f);
+  return out;
 }
 
 std::string summary_json(const CompareReport& rep) {
