@@ -64,7 +64,7 @@ button:disabled { opacity: 0.4; cursor: default; }
 #frame-table td { padding: 4px 8px; border-bottom: 1px solid var(--line); vertical-align: top; }
 #frame-table tr { cursor: pointer; }
 #frame-table tr.fail td { background: #fdeeee; }
-#frame-table tr.current td { outline: 2px solid #4a6fa5; outline-offset: -2px; }
+#frame-table tr.current td { background: #dde7f5; }
 #frame-table td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
 #frame-table td.thumb img { width: 160px; height: auto; display: block; background: #ddd; }
 #frame-table td.none { color: var(--muted); text-align: center; width: 160px; }
@@ -291,12 +291,13 @@ const char* const kReportJs = R"JS(
     });
 
     // The frame named in the address (#f-STEM), else the worst.
-    var start = rows.length ? rows[0] : null;
+    var start = rows.length ? rows[0] : null, named = null;
     if (location.hash.length > 1) {
-      var named = document.getElementById(decodeURIComponent(location.hash.slice(1)));
+      named = document.getElementById(decodeURIComponent(location.hash.slice(1)));
       if (named && rowOf[named.getAttribute('data-index')] === named) start = named;
+      else named = null;
     }
-    if (start) open(parseInt(start.getAttribute('data-index'), 10), false);
+    if (start) open(parseInt(start.getAttribute('data-index'), 10), !!named);
     if (body.getAttribute('data-status') !== 'error') body.setAttribute('data-status', 'ready');
   } catch (e) {
     fail(e && e.message ? e.message : String(e));

@@ -118,7 +118,14 @@ std::string table_row(const CompareReport& rep, const FrameResult& r, size_t ran
   row += str("<td class=\"num rank\">", rank, "</td><td class=\"name\"><a href=\"#f-", r.pair.stem, "\">",
              html_escape(r.pair.label), "</a></td>");
   row += str("<td class=\"verdict\"><span class=\"badge ", cls, "\">", verdict_word(r.status), "</span>");
-  if (!r.reason.empty()) row += str("<div class=\"reason\">", html_escape(r.reason), "</div>");
+  // Figures are in their columns; the row says only which limit they broke, or what went wrong.
+  if (r.status == Status::fail) {
+    const CompareThresholds& t = rep.options.thresholds;
+    if (r.verdict.over_failpercent) row += str("<div class=\"reason\">over ", t.failpercent.text(), "% of pixels</div>");
+    if (r.verdict.over_hardfail) row += str("<div class=\"reason\">max over ", t.hardfail, "/255</div>");
+  } else if (!r.reason.empty()) {
+    row += str("<div class=\"reason\">", html_escape(r.reason), "</div>");
+  }
   row += "</td>";
   if (r.compared) {
     row += str("<td class=\"num\">", format_fixed(r.stats.over_fail_percent(), 4), "%</td><td class=\"num\">",
