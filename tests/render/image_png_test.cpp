@@ -1,6 +1,7 @@
 // PNG writing and reading: round trip, atomic write, and errors that name the file.
 #include <gtest/gtest.h>
 #include <png.h>
+#include <zlib.h>
 
 #include <filesystem>
 #include <fstream>
@@ -110,6 +111,21 @@ TEST(PngIo, CorruptFileErrorNamesTheFile) {
   expect_error_naming(dir / "text.png", "not a PNG");
 
   expect_error_naming(dir / "missing.png", "cannot open");
+}
+
+TEST(PngIo, HeaderClaimingMoreThanTheFileHoldsIsRefusedBeforeAllocating) {
+  // A 64x64 file whose header is rewritten to 60000x60000 (with a valid CRC): decoding would fill
+  // 10 GB before finding the data short, so the size is checked against the file first.
+  const fs::path dir = test_dir("huge_claim");
+  write_png(dir / "small.png", random_image(64, 64, 7));
+  std::vector<uint8_t> bytes = read_bytes(dir / "small.png");
+  auto put32 = [&](size_t at, uint32_t v) {
+    for (int k = 0; k < 4; ++k) bytes[at + size_t(k)] = uint8_t(v >> (24 - 8 * k));
+  };
+  put32(16, 60000), put32(20, 60000);       // IHDR width, height (after signature, length, type)
+  put32(29, uint32_t(crc32(0, bytes.data() + 12, 17)));  // CRC over the type and 13 data bytes
+  write_bytes(dir / "huge.png", bytes);
+  expect_error_naming(dir / "huge.png", "needs more data than the file holds");
 }
 
 }  // namespace
