@@ -150,6 +150,63 @@ TEST(ReportBrowser, ShowsFramesWorstFirstWithVerdictsAndLoadsTheViewer) {
   EXPECT_EQ(attribute(row_tag(failing, "0001.png"), "class"), "fail current");
 }
 
+// Drives the page as a person would (clicks, the slider, keys, the order and filter controls) from a
+// script appended to a copy of it, which records every expectation that did not hold in
+// <body data-test>.
+const char* const kInteractionScript = R"JS(<script>
+(function () {
+  var failed = [];
+  function check(name, ok) { if (!ok) failed.push(name); }
+  function $(id) { return document.getElementById(id); }
+  function mode(m) { document.querySelector('[data-mode="' + m + '"]').click(); }
+  document.querySelector('tr[data-frame="0001.png"]').click();
+  check('a row click opens its frame', $('viewer').getAttribute('data-frame') === '0001.png');
+  mode('heat');
+  check('heat map', $('v-extra').style.visibility === 'visible' && /diff\/0001_heat\.png$/.test($('v-extra').getAttribute('src')));
+  mode('diff');
+  check('difference', /diff\/0001_diff\.png$/.test($('v-extra').getAttribute('src')));
+  mode('flip');
+  check('flip shows the reference first', $('v-tag').textContent === 'reference' && $('v-new').style.visibility === 'hidden');
+  $('v-frame').dispatchEvent(new PointerEvent('pointerdown', { bubbles: true }));
+  check('a click flips to new', $('v-tag').textContent === 'new' && $('v-new').style.visibility === 'visible' &&
+        $('v-ref').style.visibility === 'hidden');
+  mode('slider');
+  $('v-slider').value = 250;
+  $('v-slider').dispatchEvent(new Event('input'));
+  check('the slider clips new at 25%', /25%\)$/.test($('v-new').style.clipPath) && $('v-divider').style.left === '25%');
+  document.dispatchEvent(new KeyboardEvent('keydown', { key: 'j' }));
+  check('j opens the next row', $('viewer').getAttribute('data-frame') === '0004.png');
+  document.querySelector('tr[data-frame="0002.png"]').click();
+  check('a frame missing in new shows its reference', document.querySelector('[data-mode="slider"]').disabled &&
+        $('v-tag').textContent === 'reference');
+  $('order').value = 'sequence';
+  $('order').dispatchEvent(new Event('change'));
+  check('sequence order', document.querySelector('#frame-table tbody tr').getAttribute('data-frame') === '0000.png');
+  $('only-failing').checked = true;
+  $('only-failing').dispatchEvent(new Event('change'));
+  var shown = Array.prototype.filter.call(document.querySelectorAll('#frame-table tbody tr'), function (r) { return !r.hidden; });
+  check('failing frames only', shown.length === 4);
+  document.querySelector('#error-plot circle[data-index="1"]').dispatchEvent(new MouseEvent('click', { bubbles: true }));
+  check('a plot point opens its frame', $('viewer').getAttribute('data-frame') === '0001.png');
+  document.body.setAttribute('data-test', failed.length ? 'failed: ' + failed.join('; ') : 'passed');
+})();
+</script>
+)JS";
+
+TEST(ReportBrowser, ViewerAndTableRespondToClicksKeysAndControls) {
+  if (browser().empty()) GTEST_SKIP() << "no Chromium installed (apt-get install chromium)";
+  const fs::path page = make_report();
+  std::string html = test::read_text(page);
+  const size_t end = html.rfind("</body>");
+  ASSERT_NE(end, std::string::npos);
+  html.insert(end, kInteractionScript);
+  const fs::path driven = page.parent_path() / "driven.html";  // beside it: the same relative links
+  test::write_text(driven, html);
+  const std::string dom = dump_dom(driven);
+  EXPECT_EQ(attribute(body_tag(dom), "data-status"), "ready");
+  EXPECT_EQ(attribute(body_tag(dom), "data-test"), "passed");
+}
+
 TEST(ReportBrowser, BrokenPageDataSetsTheErrorMarker) {
   if (browser().empty()) GTEST_SKIP() << "no Chromium installed (apt-get install chromium)";
   const fs::path page = make_report();

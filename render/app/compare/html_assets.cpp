@@ -253,7 +253,7 @@ const char* const kReportJs = R"JS(
       if (state.mode === 'flip') { state.showNew = !state.showNew; render(); return; }
       if (state.mode !== 'slider') return;
       dragging = true;
-      frameBox.setPointerCapture(e.pointerId);
+      try { frameBox.setPointerCapture(e.pointerId); } catch (err) { /* a synthetic pointer: no capture needed */ }
       dragTo(e);
     });
     frameBox.addEventListener('pointermove', function (e) { if (dragging) dragTo(e); });
