@@ -1,8 +1,6 @@
 #pragma once
 // Images and folders for the comparison tests: flat and random pictures, one-pixel edits, a fresh
 // temporary folder per test, and a small CSV reader for summary.csv.
-#include <unistd.h>
-
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -34,8 +32,9 @@ inline ImageRGB8 with_change(ImageRGB8 img, int x, int y, int c, int by) {
   return img;
 }
 
+// out/tests/compare/NAME, emptied: what a failing test left stays there to be looked at.
 inline std::filesystem::path fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("spume_compare_" + name + "_" + std::to_string(getpid()));
+  const auto dir = std::filesystem::path(SPUME_OUT_DIR) / "tests" / "compare" / name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

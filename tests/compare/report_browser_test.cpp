@@ -5,6 +5,7 @@
 // must load too. Skipped only where no Chromium is installed (.ci/packages installs it).
 #include <gtest/gtest.h>
 #include <stdlib.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <regex>
@@ -85,8 +86,8 @@ std::string frame_name(int f) {
 
 // Six frames: identical, over the thresholds, missing in new, other size, within the thresholds,
 // unreadable.
-fs::path make_report() {
-  const fs::path dir = fresh_dir("browser");
+fs::path make_report(const std::string& name) {  // each test its own folder: ctest runs them in parallel
+  const fs::path dir = fresh_dir(name);
   for (int f = 0; f < 6; ++f) write_png(dir / "ref" / frame_name(f), test::random_image(64, 36, uint32_t(f)));
   write_png(dir / "new" / frame_name(0), test::random_image(64, 36, 0));
   ImageRGB8 changed = test::random_image(64, 36, 1);
@@ -106,7 +107,7 @@ fs::path make_report() {
 
 TEST(ReportBrowser, ShowsFramesWorstFirstWithVerdictsAndLoadsTheViewer) {
   if (browser().empty()) GTEST_SKIP() << "no Chromium installed (apt-get install chromium)";
-  const fs::path page = make_report();
+  const fs::path page = make_report("browser_dom");
   const std::string html = test::read_text(page);
   // Self-contained: nothing is fetched from a network.
   EXPECT_EQ(html.find("http://"), std::string::npos);
@@ -195,7 +196,7 @@ const char* const kInteractionScript = R"JS(<script>
 
 TEST(ReportBrowser, ViewerAndTableRespondToClicksKeysAndControls) {
   if (browser().empty()) GTEST_SKIP() << "no Chromium installed (apt-get install chromium)";
-  const fs::path page = make_report();
+  const fs::path page = make_report("browser_driven");
   std::string html = test::read_text(page);
   const size_t end = html.rfind("</body>");
   ASSERT_NE(end, std::string::npos);
@@ -209,7 +210,7 @@ TEST(ReportBrowser, ViewerAndTableRespondToClicksKeysAndControls) {
 
 TEST(ReportBrowser, BrokenPageDataSetsTheErrorMarker) {
   if (browser().empty()) GTEST_SKIP() << "no Chromium installed (apt-get install chromium)";
-  const fs::path page = make_report();
+  const fs::path page = make_report("browser_broken");
   std::string html = test::read_text(page);
   const std::string open = "<script type=\"application/json\" id=\"compare-data\">";
   const size_t at = html.find(open);
