@@ -3,6 +3,7 @@
 // one fails, 2 when the command cannot run as typed.
 #include <cstdio>
 #include <filesystem>
+#include <string>
 
 #include "cli_args.h"
 #include "commands.h"
@@ -27,7 +28,7 @@ constexpr const char* kUsage =
     "  Exit status: 0 every frame passes, 1 a frame fails, 2 usage error.\n";
 
 std::vector<cli::OptionSpec> compare_options() {
-  // Help text aligned at column 24 of "  --NAME ARG  help".
+  // Padded so that the help texts line up in the listing ("  --NAME ARG  help").
   return {{"out", true, false, "DIR          report.html, summary.csv, summary.json, thumbs/ and diff/"},
           {"fail", true, false, "LEVELS      a pixel fails over this difference (0-255, N or N/255; default 1)"},
           {"failpercent", true, false, "P    a frame fails when over P% of its pixels fail (default 0.02)"},
@@ -36,7 +37,6 @@ std::vector<cli::OptionSpec> compare_options() {
           {"scale", true, false, "N          difference images show |reference - new| x N (default 16)"},
           {"threads", true, false, "N        worker threads (one per core; results do not depend on it)"},
           {"quiet", false, false, "           no progress on stderr"}};
-
 }
 
 // The worst failing frames, one line each, then one line for the whole comparison.
@@ -56,9 +56,10 @@ void print_summary(const std::vector<FrameResult>& results, const CompareOptions
               all.frames == 1 ? "" : "s", all.failed, all.passed, all.identical);
   if (all.worst) {
     const FrameResult& w = results[*all.worst];
-    std::printf("; worst compared %s: %s%% of pixels over %d/255, max %d/255, PSNR %s dB, SSIM %s", w.pair.label.c_str(),
-                format_fixed(w.stats.over_fail_percent(), 4).c_str(), o.thresholds.fail, w.stats.max_diff,
-                format_fixed(w.stats.psnr_db(), 2).c_str(), w.ssim.defined ? format_fixed(w.ssim.mean, 5).c_str() : "n/a");
+    const std::string psnr = w.stats.identical() ? "infinite" : format_fixed(w.stats.psnr_db(), 2) + " dB";
+    std::printf("; worst compared %s: %s%% of pixels over %d/255, max %d/255, PSNR %s, SSIM %s", w.pair.label.c_str(),
+                format_fixed(w.stats.over_fail_percent(), 4).c_str(), o.thresholds.fail, w.stats.max_diff, psnr.c_str(),
+                w.ssim.defined ? format_fixed(w.ssim.mean, 5).c_str() : "n/a");
   }
   std::printf("\n");
 }
@@ -90,7 +91,10 @@ int command_compare(const std::vector<std::string>& raw) {
     }
     set = resolve_frames(args.positional[0], args.positional[1], args.value("frames"));
   } catch (const Error& e) {
-    std::fprintf(stderr, "spume compare: %s\n%s", e.what(), kUsage);
+    std::string message = e.what();
+    const std::string prefix = "spume compare: ";  // the option parser names the command itself
+    if (message.rfind(prefix, 0) == 0) message.erase(0, prefix.size());
+    std::fprintf(stderr, "%s%s\n%s", prefix.c_str(), message.c_str(), kUsage);
     return 2;
   }
   const bool quiet = args.has("quiet");

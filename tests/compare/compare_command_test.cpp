@@ -180,11 +180,12 @@ TEST(CompareCommand, UsageErrorsExitTwoAndSayWhatIsAllowed) {
            {a + " " + a + " --failpercent 1e-3", "--failpercent \"1e-3\""},
            {a + " " + a + " --frames 1", "--frames selects numbered frames"},
            {a + " " + a + " --scale 0", "--scale: \"0\" is not a whole number from 1 to 255"},
-           {a + " " + a + " --fial 2", "unknown option --fial (did you mean --fail?)"},
+           {a + " " + a + " --fial 2", "spume compare: unknown option --fial (did you mean --fail?)"},
        }) {
     const CommandResult r = compare(c.args);
     EXPECT_EQ(r.status, 2) << c.args << "\n" << r.output;
     EXPECT_NE(r.output.find(c.says), std::string::npos) << c.args << "\n" << r.output;
+    EXPECT_EQ(r.output.find("spume compare: spume compare"), std::string::npos) << r.output;
   }
 }
 

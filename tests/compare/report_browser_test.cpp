@@ -180,6 +180,11 @@ const char* const kInteractionScript = R"JS(<script>
   document.querySelector('tr[data-frame="0002.png"]').click();
   check('a frame missing in new shows its reference', document.querySelector('[data-mode="slider"]').disabled &&
         $('v-tag').textContent === 'reference');
+  document.querySelector('tr[data-frame="0003.png"]').click();
+  check('images of two sizes are not overlaid', document.querySelector('[data-mode="slider"]').disabled &&
+        document.querySelector('[data-mode="flip"]').disabled && !document.querySelector('[data-mode="new"]').disabled);
+  mode('new');
+  check('new at its own size', $('v-frame').style.aspectRatio.replace(/ /g, '') === '32/18');
   $('order').value = 'sequence';
   $('order').dispatchEvent(new Event('change'));
   check('sequence order', document.querySelector('#frame-table tbody tr').getAttribute('data-frame') === '0000.png');

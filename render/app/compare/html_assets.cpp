@@ -111,7 +111,8 @@ const char* const kReportJs = R"JS(
     var state = { index: -1, mode: 'slider', showNew: false, timer: null };
 
     function available(f, mode) {
-      if (mode === 'slider' || mode === 'flip') return !!(f.ref && f.new);
+      // Overlaying images of two sizes would stretch one: those frames show each image alone.
+      if (mode === 'slider' || mode === 'flip') return !!(f.ref && f.new) && f.w === f.nw && f.h === f.nh;
       if (mode === 'reference') return !!f.ref;
       if (mode === 'new') return !!f.new;
       if (mode === 'diff') return !!f.diff;
@@ -140,8 +141,21 @@ const char* const kReportJs = R"JS(
 
     function extraUrl(f) { return state.mode === 'heat' ? f.heat : state.mode === 'diff' ? f.diff : null; }
 
+    // The frame box takes the shown image's size. Fit: as wide as the page allows, small frames
+    // enlarged to 960 px with visible pixels; actual: one image pixel per CSS pixel.
+    function sizeFrame(w, h) {
+      var actual = byId('v-actual').checked;
+      frameBox.style.aspectRatio = w + ' / ' + h;
+      frameBox.style.width = actual ? w + 'px' : '';
+      frameBox.style.maxWidth = actual ? 'none' : Math.max(w, 960) + 'px';
+      stage.classList.toggle('actual', actual);
+      stage.classList.toggle('upscaled', !actual && w < 960);
+    }
+
     function render() {
       var f = frames[state.index];
+      if (state.mode === 'new' && f.nw) sizeFrame(f.nw, f.nh);
+      else sizeFrame(f.w || f.nw || 16, f.h || f.nh || 9);
       modeButtons.forEach(function (b) {
         var m = b.getAttribute('data-mode');
         b.disabled = !available(f, m);
@@ -186,14 +200,6 @@ const char* const kReportJs = R"JS(
         tr.insertCell().textContent = pair[0];
         tr.insertCell().textContent = pair[1];
       });
-      var w = f.w || 16, h = f.h || 9;
-      frameBox.style.aspectRatio = w + ' / ' + h;
-      // Fit: as wide as the page allows, small frames enlarged to 960 px with visible pixels.
-      var actual = byId('v-actual').checked;
-      frameBox.style.width = actual ? w + 'px' : '';
-      frameBox.style.maxWidth = actual ? 'none' : Math.max(w, 960) + 'px';
-      stage.classList.toggle('actual', actual);
-      stage.classList.toggle('upscaled', !actual && w < 960);
       if (!available(f, state.mode)) {
         state.mode = ['slider', 'reference', 'new', 'heat'].filter(function (m) { return available(f, m); })[0] || 'slider';
       }

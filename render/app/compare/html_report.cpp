@@ -65,8 +65,8 @@ std::string frame_data_json(const CompareReport& rep, const fs::path& dir) {
     f["pass"] = r.passed();
     f["reason"] = r.reason;
     const bool ref_ok = r.reference_width > 0, new_ok = r.candidate_width > 0;
-    f["w"] = ref_ok ? r.reference_width : r.candidate_width;
-    f["h"] = ref_ok ? r.reference_height : r.candidate_height;
+    f["w"] = r.reference_width, f["h"] = r.reference_height;  // 0 when not decoded
+    f["nw"] = r.candidate_width, f["nh"] = r.candidate_height;
     // Only images that decoded are linked: a browser cannot show the others either.
     f["ref"] = ref_ok ? ordered_json(relative_url(r.pair.reference, dir)) : ordered_json(nullptr);
     f["new"] = new_ok ? ordered_json(relative_url(r.pair.candidate, dir)) : ordered_json(nullptr);
