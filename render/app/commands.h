@@ -19,5 +19,6 @@ Command cmd_farm_chunks();
 Command cmd_farm_slurm();
 Command cmd_info();
 Command cmd_report();
+Command cmd_compare();
 
 }  // namespace spume

@@ -98,6 +98,10 @@ bool decode_rows(MemoryReader* reader, DecodeTarget target, PngStatus* status) {
   png_read_info(png, info);
   const png_uint_32 w = png_get_image_width(png, info), h = png_get_image_height(png, info);
   if (w == 0 || h == 0 || w > 65535 || h > 65535) png_error(png, "image size out of range");
+  // A corrupt header may claim up to 65535 x 65535 pixels (12 GB decoded). Deflate expands at most
+  // about 1032:1, so a claim the file's bytes cannot hold is refused before anything is allocated.
+  if (double(h) * (1.0 + double(png_get_rowbytes(png, info))) > 1100.0 * double(reader->size))
+    png_error(png, "the header's image size needs more data than the file holds");
   png_set_expand(png);        // palette -> RGB, grey < 8 bits -> 8 bits, tRNS -> alpha
   png_set_strip_16(png);      // 16-bit -> 8-bit
   png_set_strip_alpha(png);   // RGBA -> RGB: the regression images are opaque

@@ -179,7 +179,7 @@ TEST(CliConventions, UsageErrorsExitTwoNamingTheCommandOnce) {
       {"farm chunks x.json", "farm chunks", "--chunk N (frames per chunk) is required"},
       {"farm chunks x.json --chunk 0", "farm chunks", "--chunk: \"0\" is not a whole number from 1 to 1073741824"},
       {"run --fluid 'a_%d.bgeo'", "run", "--fluid needs --radius R (the fluid particle radius in m)"},
-      {"run x.json --radius 0.02", "run", "--radius and --fps go with --fluid"},
+      {"run x.json --radius 0.02", "run", "--radius, --fps and --tank go with --fluid"},
       {"run --fluid 'a_%d.bgeo' --radius 2cm", "run", "--radius: \"2cm\" is not a number"},
       {"report --only surface,foam", "report",
        "--only: \"foam\" is not a study; allowed: render,diffuse,fluid,surface,stability (comma-separated)"},

@@ -1,8 +1,9 @@
 // Image regression: small scenes under tests/golden/ are simulated and rendered by the spume command
-// and compared with the golden PNGs committed beside them (tests/golden/<scene>_<frame>.png). The
-// rule (image_diff.h): at most 1/255 on all but 0.02% of pixels and 3/255 anywhere; on failure the
-// new image, the golden and a x16 difference image are written to out/tests/golden/. After an
-// intended change of the pictures, refresh the goldens with
+// and compared with the golden PNGs committed beside them (tests/golden/<scene>_<frame>.png) through
+// `spume compare`'s own code and default thresholds (image_compare.h): at most 1/255 on all but 0.02%
+// of pixels and 3/255 anywhere. On failure the comparison's report (report.html with the reference,
+// the new image, the x16 difference and the heat map; summary.csv and summary.json) is written to
+// out/tests/golden/<scene>_compare/. After an intended change of the pictures, refresh the goldens with
 //   SPUME_UPDATE_GOLDENS=1 build/tests/spume_render_tests --gtest_filter='GoldenImages*'
 // and look at them before committing.
 #include <gtest/gtest.h>
@@ -11,8 +12,7 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "image/image_diff.h"
-#include "image/png_io.h"
+#include "compare/compare_report.h"
 
 namespace spume {
 namespace {
@@ -28,22 +28,23 @@ void check_golden(const std::string& scene, int frame) {
   const std::string command = std::string(SPUME_BINARY) + " run --quiet " + (kGoldenDir / (scene + ".json")).string() +
                               " --out " + out.string() + " --frames " + std::to_string(frame) + " 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
-  const ImageRGB8 rendered = read_png(out / scene / "frames" / name);
+  const fs::path rendered = out / scene / "frames" / name;
   const fs::path golden = kGoldenDir / (scene + "_" + name);
   if (std::getenv("SPUME_UPDATE_GOLDENS")) {
-    fs::copy_file(out / scene / "frames" / name, golden, fs::copy_options::overwrite_existing);
+    fs::copy_file(rendered, golden, fs::copy_options::overwrite_existing);
     GTEST_SKIP() << "golden refreshed: " << golden;
   }
-  const ImageRGB8 expected = read_png(golden);
-  const ImageDiff diff = compare_images(rendered, expected);
-  const bool ok = within_regression_tolerance(diff, rendered.pixel_count());
-  if (!ok) {  // the three images side by side in one folder, for a person to look at
-    fs::copy_file(out / scene / "frames" / name, out / (scene + "_new.png"), fs::copy_options::overwrite_existing);
-    fs::copy_file(golden, out / (scene + "_golden.png"), fs::copy_options::overwrite_existing);
-    write_difference_png(out / (scene + "_difference_x16.png"), rendered, expected);
+  // `spume compare GOLDEN RENDERED`: the golden is the reference.
+  const compare::FrameSet set = compare::resolve_frames(golden.string(), rendered.string(), std::nullopt);
+  compare::CompareOptions options;  // the defaults are the regression rule
+  const compare::FrameResult result = compare::compare_and_report(set, options).front();
+  const fs::path report = out / (scene + "_compare");
+  if (!result.passed()) {  // again with the report, for a person to look at
+    options.out = report;
+    compare::compare_and_report(set, options);
   }
-  EXPECT_TRUE(ok) << scene << " frame " << frame << ": " << diff.over_1 << " pixels over 1/255, " << diff.over_3
-                  << " over 3/255, max " << diff.max_diff << "/255; difference image in " << out;
+  EXPECT_TRUE(result.passed()) << scene << " frame " << frame << ": " << result.reason << "; report: "
+                               << (report / "report.html");
 }
 
 TEST(GoldenImages, SurfaceSolidsAndDiffuseMaterial) { check_golden("splash", 12); }
