@@ -4,11 +4,14 @@
 
 #include "core/atomic_file.h"
 #include "io/stage_record.h"
+#include "pipeline/simulate_scene.h"
 
 namespace spume {
 
 std::unique_ptr<OutputLock> lock_scene_output(const SceneSetup& setup, OutputLock::Mode mode, const std::string& what) {
   const std::filesystem::path scene_out = setup.out_root / setup.sim.name;
+  // Inputs that cannot be read at all are named before anything is created in the output folder.
+  if (setup.sim.source == FluidSourceKind::Files) scene_fluid_source(setup.sim, setup.out_root);
   // Renders share only with renders that would write the same frames.
   const std::string keys = record_digest({{"render", setup.render_keys}, {"simulation", setup.sim.diffuse_keys}});
   auto lock = std::make_unique<OutputLock>(scene_out, mode, keys, what, setup.quiet);

@@ -62,6 +62,14 @@ SceneInputs read_scene_inputs(const SimScene& scene, const std::filesystem::path
     solids.push_back(*c.tank);
     in.solids = SolidSet(std::move(solids));
   }
+  {
+    // For the diffuse material, a tank's walls are 2 h thick: spray that leaves over the rim and
+    // falls beyond them is outside (the domain then deletes it), not pulled back in through the wall.
+    std::vector<Solid> solids = in.solids.solids();
+    for (Solid& s : solids)
+      if (s.kind == Solid::Kind::Tank) s.wall_thickness = 2.0f * scene.fluid.support_radius;
+    in.solids = SolidSet(std::move(solids));
+  }
   if (!solver) {
     const std::string warning = spacing_warning(scene.fluid.particle_radius, in.survey.spacing);
     if (!warning.empty()) in.notes.push_back(warning);

@@ -15,7 +15,7 @@ namespace spume {
 
 struct SceneInputs {
   FluidSurvey survey;
-  SolidSet solids;   // the scene's, with the inferred tank added
+  SolidSet solids;   // the scene's, with the inferred tank added; tank walls 2 h thick
   Aabb domain;       // the scene's, else default_domain over the survey's bounds
   std::vector<std::string> notes;  // what was derived, and warnings, one line each
 };

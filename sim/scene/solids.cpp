@@ -43,14 +43,30 @@ bool above_open_walls(const Solid& tank, const Vec3f& p, int axis) {
   return tank.open_top && axis != tank.up_axis && p[tank.up_axis] > tank.max[tank.up_axis];
 }
 
+// Whether p, beyond the tank's wall of `axis` (low side or high), is inside that wall: within its
+// thickness, and within the walls' outer extent along the other axes. Farther out is the world
+// outside the tank (spray thrown over the rim falls there; it is not pulled back in through the wall).
+bool in_wall_slab(const Solid& tank, const Vec3f& p, int axis, bool low) {
+  const float t = tank.wall_thickness;
+  const float depth = low ? tank.min[axis] - p[axis] : p[axis] - tank.max[axis];
+  if (!(depth > 0.0f) || !(depth < t)) return false;
+  for (int b = 0; b < 3; ++b) {
+    if (b == axis) continue;
+    if (p[b] < tank.min[b] - t) return false;
+    const bool has_top = !(tank.open_top && b == tank.up_axis);
+    if (p[b] > tank.max[b] + (has_top ? t : 0.0f)) return false;
+  }
+  return true;
+}
+
 // p lies inside the solid (for a tank: beyond its walls), with no tolerance.
 bool contains(const Solid& s, const Vec3f& p) {
   switch (s.kind) {
     case Solid::Kind::Tank:
       for (int a = 0; a < 3; ++a) {
         if (above_open_walls(s, p, a)) continue;
-        if (p[a] < s.min[a]) return true;
-        if (!(s.open_top && a == s.up_axis) && p[a] > s.max[a]) return true;
+        if (in_wall_slab(s, p, a, true)) return true;
+        if (!(s.open_top && a == s.up_axis) && in_wall_slab(s, p, a, false)) return true;
       }
       return false;
     case Solid::Kind::Box: {
@@ -247,14 +263,19 @@ bool SolidSet::push_out(Vec3f& p, Vec3f& v, float skin) const {
           const Vec3f start = p;  // the walls are judged at the point as it arrived
           for (int a = 0; a < 3; ++a) {
             if (above_open_walls(s, start, a)) continue;
-            Vec3f n = Vec3f::Zero();
-            if (p[a] < s.min[a]) {
-              n[a] = 1.0f;
-              push(n, s.min[a] - p[a]);
-            }
-            if (!(s.open_top && a == s.up_axis) && p[a] > s.max[a]) {
-              n[a] = -1.0f;
-              push(n, p[a] - s.max[a]);
+            // Out by the nearer face of the wall: back inside, or (past half its thickness) outside.
+            for (bool low : {true, false}) {
+              if (!low && s.open_top && a == s.up_axis) continue;
+              if (!in_wall_slab(s, start, a, low)) continue;
+              const float depth = low ? s.min[a] - p[a] : p[a] - s.max[a];
+              Vec3f n = Vec3f::Zero();
+              if (depth < 0.5f * s.wall_thickness) {
+                n[a] = low ? 1.0f : -1.0f;
+                push(n, depth);
+              } else {
+                n[a] = low ? -1.0f : 1.0f;
+                push(n, s.wall_thickness - depth);
+              }
             }
           }
           break;

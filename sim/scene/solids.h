@@ -9,6 +9,7 @@
 //    a later time comes from the solver (FluidSolver::body_poses) and is applied with `posed`.
 // Boxes may be rotated (orientation about their centre); tanks are axis-aligned.
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "core/vec.h"
@@ -72,6 +73,9 @@ struct Solid {
   float radius = 0.0f;                             // Sphere
   bool open_top = true;                            // Tank: no wall at max along "up"
   int up_axis = 1;                                 // Tank: which axis is up (opposite gravity)
+  // Tank: m. Beyond its walls by more than this is the world outside the tank, where spray thrown
+  // over the rim falls. Infinite: nothing is outside (every point beyond a wall is in it).
+  float wall_thickness = std::numeric_limits<float>::infinity();
   // Box, Sphere: rotation about the centre, body frame -> world; the box's min/max are its extent in
   // its own frame (centred on (min + max) / 2). Tanks must keep the identity.
   Quatf orientation = Quatf::Identity();

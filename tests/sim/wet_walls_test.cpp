@@ -130,6 +130,25 @@ TEST(WetWalls, SprayThrownAtADryWallStaysSprayAndFalls) {
   EXPECT_NEAR(out.back().positions[0].x(), 0.0f, 1e-3f);
 }
 
+TEST(WetWalls, SprayOverTheRimFallsOutsideTheTankNotBackThroughItsWall) {
+  // Walls 0.16 m thick (2 h): a particle 0.12 m beyond the x = 0 wall, above the rim at y = 1, falls
+  // past the rim into the wall's outer half and leaves by its outer face.
+  SolidSet solids = tank();
+  std::vector<Solid> with_walls = solids.solids();
+  with_walls[0].wall_thickness = 2 * kH;
+  DiffuseSimulator sim(setup(SolidSet(with_walls)));
+  sim.set_particles(placed({{-0.12f, 1.05f, 0.5f}}, {{0.0f, 0.0f, 0.0f}}));
+  const auto fluid = pool();
+  const std::vector<Vec3f> still(fluid.size(), Vec3f::Zero());
+  std::vector<FluidFrame> seq;
+  for (int k = 0; k < 11; ++k) seq.push_back(testing::frame_of(k, k / 50.0, fluid, still));
+  for (int k = 0; k + 1 < 11; ++k) sim.process_frame(seq[size_t(k)], &seq[size_t(k) + 1], [](const DiffuseFrame&, const FrameStats&) {});
+  ASSERT_EQ(sim.particles().size(), 1u);
+  const Vec3f x = sim.particles().positions[0];
+  EXPECT_LT(x.x(), -2 * kH);                                   // outside the wall, not inside the tank
+  EXPECT_NEAR(x.y(), 1.05f - 0.5f * 9.81f * 0.04f, 1e-3f);    // in free fall all along
+}
+
 TEST(WetWalls, TheLayerAgainstAWallIsInteriorAndTheWaterlineFacesUp) {
   const auto fluid = pool();
   const auto state = testing::state_of(fluid, std::vector<Vec3f>(fluid.size(), Vec3f::Zero()));
