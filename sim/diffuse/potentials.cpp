@@ -53,6 +53,10 @@ void compute_normals(const NeighbourGrid& grid, float particle_volume, const Dif
         }
       // Next to a wall the count is scaled up to the water the wall stands for (MODEL.md §8.10-11).
       const float fluid_count = lane_sum(count);
+      if (fluid_count >= max_neighbours) continue;  // solids only raise the count
+      // The bounds settle most particles against walls (interior) without integrating.
+      if (see_solids && wet_wall_count(fluid_count, solid_coverage_bounds(*solids, points[si], h).lo) >= max_neighbours)
+        continue;
       const SolidCoverage cover = see_solids ? solid_coverage(*solids, points[si], h, true) : SolidCoverage{};
       const float free_share = std::max(1.0f - cover.fraction, 0.1f);
       if (wet_wall_count(fluid_count, cover.fraction) >= max_neighbours) continue;

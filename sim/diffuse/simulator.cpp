@@ -59,14 +59,25 @@ void DiffuseSimulator::classify(const FluidStepState& state, uint32_t step, bool
   parallel_for(particles_.size(), 4096, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
       float count = samples_.neighbour_count[i];
-      // A wall counts as the water it replaces only as far as the wall is wet (MODEL.md §8.11): a
-      // dry wall adds nothing, a submerged floor a full neighbourhood, the waterline about half.
-      if (count_solids && count > 0.0f)
-        count = wet_wall_count(count, solid_coverage(solids, particles_.positions[i], h, false).fraction);
-      samples_.neighbour_count[i] = count;
       // Particles born in the previous step have no type yet: no hysteresis for them.
       const bool newborn = diffuse_id_step(particles_.ids[i]) == ((step - 1) & kMaxBirthStep);
-      particles_.types[i] = spume::classify(count, p, newborn ? nullptr : &particles_.types[i]);
+      const DiffuseType* previous = newborn ? nullptr : &particles_.types[i];
+      // A wall counts as the water it replaces only as far as the wall is wet (MODEL.md §8.11): a
+      // dry wall adds nothing, a submerged floor a full neighbourhood, the waterline about half.
+      // The type only grows with the count, so where both bounds on the covered share give the same
+      // type the exact share is not needed (most particles near a box's edges).
+      if (count_solids && count > 0.0f) {
+        const Vec3f& x = particles_.positions[i];
+        const CoverageBounds bounds = solid_coverage_bounds(solids, x, h);
+        const float low = wet_wall_count(count, bounds.lo);
+        if (bounds.lo == bounds.hi || spume::classify(low, p, previous) ==
+                                          spume::classify(wet_wall_count(count, bounds.hi), p, previous))
+          count = low;
+        else
+          count = wet_wall_count(count, solid_coverage(solids, x, h, false).fraction);
+      }
+      samples_.neighbour_count[i] = count;
+      particles_.types[i] = spume::classify(count, p, previous);
     }
   });
 }

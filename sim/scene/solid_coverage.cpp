@@ -144,13 +144,19 @@ void add_solid_segments(const Solid& s, const Vec3f& p, const Vec3f& u, SegmentS
   }
 }
 
-SolidCoverage integrate_directions(const SolidSet& solids, const Vec3f& p, float h, bool with_gradient) {
+// The solids within reach of the ball (a scene of many boxes has only a few near any point).
+struct NearSolids {
+  std::array<const Solid*, 32> solid{};
+  size_t count = 0;
+};
+
+SolidCoverage integrate_directions(const NearSolids& near, const Vec3f& p, float h, bool with_gradient) {
   const float weight = 4.0f * kPi / kCoverageDirections;
   double volume = 0.0;
   Vec3d gradient = Vec3d::Zero();
   for (const Vec3f& u : directions()) {
     SegmentSet segments(h);
-    for (const Solid& s : solids.solids()) add_solid_segments(s, p, u, segments);
+    for (size_t k = 0; k < near.count; ++k) add_solid_segments(*near.solid[k], p, u, segments);
     double v = 0.0, g = 0.0;
     segments.for_each_union([&](float a, float b) {
       v += (double(b) * b * b - double(a) * a * a) / 3.0;
@@ -222,25 +228,74 @@ Near classify_solid(const Solid& s, const Vec3f& p, float h, Face& face) {
   return Near::Complex;
 }
 
+double cap_fraction(float distance, float h) {
+  const double x = double(std::clamp(distance, -h, h)) / h;
+  return (1.0 - x) * (1.0 - x) * (2.0 + x) / 4.0;  // cap volume / (4/3 pi h^3)
+}
+
 }  // namespace
+
+CoverageBounds solid_coverage_bounds(const SolidSet& solids, const Vec3f& p, float h) {
+  double hi = 0.0, lo = 0.0;
+  int faces = 0;
+  bool complex = false;
+  Face face{};
+  for (const Solid& s : solids.solids()) {
+    const Near what = classify_solid(s, p, h, face);
+    if (what == Near::Nothing) continue;
+    if (what == Near::OneFace) {
+      ++faces;
+      const double cap = cap_fraction(face.distance, h);
+      hi += cap, lo = std::max(lo, cap);
+      continue;
+    }
+    complex = true;
+    switch (s.kind) {
+      case Solid::Kind::Sphere:  // inside the half-space beyond its tangent plane
+        hi += cap_fraction((p - s.center).norm() - s.radius, h);
+        break;
+      case Solid::Kind::Box: {  // inside the half-space behind its farthest-out face plane
+        const Vec3f local = s.rotated() ? Vec3f(s.orientation.conjugate() * (p - s.centre())) : Vec3f(p - s.centre());
+        hi += cap_fraction((local.cwiseAbs() - 0.5f * (s.max - s.min)).maxCoeff(), h);
+        break;
+      }
+      case Solid::Kind::Tank: {  // the walls lie beyond their planes; below the rim each is all wall
+        const bool below_rim = !s.open_top || p[s.up_axis] + h <= s.max[s.up_axis];
+        for (int a = 0; a < 3; ++a)
+          for (bool low : {true, false}) {
+            if (!low && s.open_top && a == s.up_axis) continue;
+            const float d = low ? p[a] - s.min[a] : s.max[a] - p[a];
+            if (d >= h) continue;
+            const double cap = cap_fraction(d, h);
+            hi += cap;
+            if (below_rim || a == s.up_axis) lo = std::max(lo, cap);
+          }
+        break;
+      }
+    }
+  }
+  if (!complex && faces <= 1) return {float(lo), float(lo)};  // exact: nothing, or one flat face
+  return {float(lo), float(std::min(hi, 1.0))};
+}
 
 SolidCoverage solid_coverage(const SolidSet& solids, const Vec3f& p, float h, bool with_gradient) {
   Face face{}, found{};
   int faces = 0;
+  bool complex = false;
+  NearSolids near;
   for (const Solid& s : solids.solids()) {
-    switch (classify_solid(s, p, h, face)) {
-      case Near::Nothing: break;
-      case Near::OneFace: ++faces, found = face; break;
-      case Near::Complex: return integrate_directions(solids, p, h, with_gradient);
-    }
+    const Near what = classify_solid(s, p, h, face);
+    if (what == Near::Nothing) continue;
+    if (near.count < near.solid.size()) near.solid[near.count++] = &s;
+    if (what == Near::OneFace) ++faces, found = face;
+    else complex = true;
   }
-  if (faces == 0) return {};
-  if (faces > 1) return integrate_directions(solids, p, h, with_gradient);
+  if (near.count == 0) return {};
+  if (complex || faces > 1) return integrate_directions(near, p, h, with_gradient);
   // One flat face: the solid part of the ball is the cap beyond the plane.
   SolidCoverage c;
-  const float d = std::clamp(found.distance, -h, h);
-  const double x = double(d) / h;
-  c.fraction = float((1.0 - x) * (1.0 - x) * (2.0 + x) / 4.0);  // cap volume / (4/3 pi h^3)
+  const double x = double(std::clamp(found.distance, -h, h)) / h;
+  c.fraction = float(cap_fraction(found.distance, h));
   if (with_gradient) {
     // Divergence theorem: the integral of ∇W over the cap is the normal times the integral of W over
     // the flat disc, 2 pi ∫_|d|^h W(s) s ds (the same for p on either side of the plane).

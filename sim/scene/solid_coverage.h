@@ -22,6 +22,15 @@ struct SolidCoverage {
 // `with_gradient`: false skips the gradient (classification needs only the fraction).
 SolidCoverage solid_coverage(const SolidSet& solids, const Vec3f& p, float h, bool with_gradient);
 
+// Bounds on `fraction` without integrating, from each nearby solid's enclosing half-space (hi: their
+// caps summed) and the walls known to be solid throughout their half-space (lo); lo == hi exactly when
+// solid_coverage would not integrate either. Where a decision is the same at both bounds (a type, the
+// surface test), the integral is not needed.
+struct CoverageBounds {
+  float lo = 0.0f, hi = 0.0f;
+};
+CoverageBounds solid_coverage_bounds(const SolidSet& solids, const Vec3f& p, float h);
+
 // Directions of the quadrature used away from single faces (exposed for tests).
 constexpr int kCoverageDirections = 256;
 
