@@ -7,11 +7,15 @@
 //    the scene's box (the box around the fluid blocks and the solids, kinematic ones over their whole
 //    path), is the speed it would have at that bottom after falling without loss. Fluid released at
 //    rest in the box has u <= U = sqrt(2 |g| H), H the box's height along g, and only moving solids add
-//    energy, so u may not exceed kSpeedFactor x U_ref with U_ref = max(U, 2 x the fastest kinematic
+//    energy, so u may not exceed kSpeedFactor = 5 times U_ref = max(U, 2 x the fastest kinematic
 //    solid's speed (a wall moving at w throws fluid at up to 2w), 1 m/s). Counting height makes the
 //    bound one of energy, not of speed: a particle that spilled over a wall and falls forever keeps its
 //    u, while one shot upwards by an unstable step does not escape the bound by climbing.
-// Measured u / U_ref, healthy: see kSpeedFactor.
+// Measured, the largest u / U_ref over whole runs of the shipped scenes: dam break 1.79 (29k
+// particles, a splash thrown up the far wall; 1.98 at 211k over its first second), tower 1.51,
+// wave 1.50, lighthouse 1.13, ship 0.98; so 5 leaves a margin of 2.5 (6 in energy). With
+// min_dt = max_dt = 1 s (one step a frame) the dam break reaches 4.9 at frame 6 and 23.6 at frame 7,
+// the ship 7.4 at frame 11.
 #include <string>
 #include <vector>
 
@@ -33,8 +37,8 @@ struct BlowUpLimits {
   double max_density_error = 0.0;  // bound on the density solve's final average compression
 };
 
-// A healthy run stays below this multiple of U_ref in fall speed.
-constexpr double kSpeedFactor = 4.0;
+// A healthy run stays below this multiple of U_ref in fall speed (measured above).
+constexpr double kSpeedFactor = 5.0;
 constexpr double kMaxDensityError = 0.10;
 
 BlowUpLimits blow_up_limits(const FluidSolverParams& params, const std::vector<FluidBlock>& blocks,
