@@ -49,8 +49,7 @@ MemoryEstimate estimate_memory(const FluidSolverParams& params, const std::vecto
   for (const FluidBlock& b : blocks) e.fluid_particles += block_lattice(b, params.particle_radius).count();
   e.boundary_particles = count_boundary(solids, params.boundary_spacing * params.particle_radius,
                                         4.0f * params.particle_radius);
-  e.bytes = kFixedBytes + kBytesPerFluidParticle * e.fluid_particles +
-            kBytesPerBoundaryParticle * e.boundary_particles;
+  e.bytes = kBytesPerFluidParticle * e.fluid_particles + kBytesPerBoundaryParticle * e.boundary_particles;
   return e;
 }
 

@@ -4,10 +4,14 @@
 //
 // Particle counts come from the same lattices the solver fills (fluid: every lattice point of every
 // block, before those inside solids are left out, so an upper bound; boundary: exact). Bytes per
-// particle were measured as the peak resident memory of `spume simulate` on the dam break at three
-// sizes (see kBytesPerFluidParticle): the particle arrays, the neighbour grid, the cached neighbour
-// pairs (about 30 fluid pairs of 16 bytes a particle, held twice while they are gathered) and the
-// frame written to the cache.
+// particle are measured: the peak resident memory of the fluid stage (run_fluid_stage, less the
+// process before it) on scenes/dambreak.json. Over its first 4 frames, 28.9k, 84.2k and 211k fluid
+// particles with 32.8k, 66.0k and 122k boundary particles, and 28.9k with 317k (a larger tank), fit
+// 1.6 kB per fluid and 75 bytes per boundary particle with no constant term; over the whole run
+// (91 frames: the splash spreads the fluid over more grid cells and neighbour buffers grow) the peak
+// is 2.19 kB (28.9k) and 2.24 kB (84.2k) per fluid particle. Most of it is the cached neighbour
+// pairs (16 bytes each, ~30 per particle, gathered in per-task buffers and then copied: twice,
+// plus the buffers' growth slack); the particle arrays are 64 bytes.
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -23,9 +27,9 @@ struct MemoryEstimate {
   double bytes = 0.0;
 };
 
-constexpr double kBytesPerFluidParticle = 1400.0;
-constexpr double kBytesPerBoundaryParticle = 120.0;
-constexpr double kFixedBytes = 64.0e6;  // the neighbour grids' cell tables (at least 4M cells each)
+// The measured peaks above, rounded up.
+constexpr double kBytesPerFluidParticle = 2300.0;
+constexpr double kBytesPerBoundaryParticle = 80.0;
 
 MemoryEstimate estimate_memory(const FluidSolverParams& params, const std::vector<FluidBlock>& blocks,
                                const SolidSet& solids);
