@@ -15,9 +15,12 @@ std::string format_duration(double seconds) {
   return buffer;
 }
 
-Progress::Progress(std::string label, size_t total, bool quiet)
+Progress::Progress(std::string label, size_t total, bool quiet, double partial_interval)
     : label_(std::move(label)), total_(total), quiet_(quiet), terminal_(::isatty(2) == 1),
-      start_(std::chrono::steady_clock::now()) {}
+      partial_interval_(partial_interval >= 0.0 ? partial_interval
+                        : terminal_        ? kPartialIntervalTerminal
+                                           : kPartialIntervalLog),
+      start_(std::chrono::steady_clock::now()), last_line_(start_) {}
 
 Progress::~Progress() {
   if (open_line_) std::fputc('\n', stderr);
@@ -38,6 +41,21 @@ void Progress::update(size_t done, const std::string& note) {
     line += "  eta " + format_duration(rate > 0 ? double(total_ - done) / rate : 0.0);
   }
   if (!note.empty()) line += "  " + note;
+  print(line);
+}
+
+bool Progress::partial_due() const {
+  if (quiet_) return false;
+  const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_line_).count();
+  return since >= partial_interval_;
+}
+
+void Progress::partial(size_t done, const std::string& note) {
+  if (!partial_due()) return;
+  print(str(label_, ": frame ", done + 1, "/", total_, " in progress  ", note));
+}
+
+void Progress::print(const std::string& line) {
   if (terminal_) {
     std::fprintf(stderr, "\r\033[K%s", line.c_str());
     open_line_ = true;
@@ -45,6 +63,7 @@ void Progress::update(size_t done, const std::string& note) {
     std::fprintf(stderr, "%s\n", line.c_str());
   }
   std::fflush(stderr);
+  last_line_ = std::chrono::steady_clock::now();
 }
 
 void Progress::finish(const std::string& note) {
@@ -59,6 +78,7 @@ void Progress::message(const std::string& line) {
   if (quiet_) return;
   if (open_line_) std::fputc('\n', stderr), open_line_ = false;
   std::fprintf(stderr, "%s\n", line.c_str());
+  last_line_ = std::chrono::steady_clock::now();
 }
 
 }  // namespace spume

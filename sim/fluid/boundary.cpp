@@ -92,10 +92,55 @@ void sample_sphere_layers(const Vec3f& c, float radius, float spacing, int layer
   }
 }
 
+namespace {
+
+// Layers whose centre (k + 1/2) spacing lies within h of the surface.
+int layer_count(float spacing, float h) { return std::max(1, int(std::ceil(h / spacing - 0.5f - 1e-4f))); }
+
+// Lattice cells along one axis, as fit_lattice rounds them, in double so that absurd solids are counted.
+double cells_along(float extent, float spacing) { return std::max(1.0, double(std::round(extent / spacing))); }
+
+double sphere_shell_count(float radius, float spacing, int layers) {
+  double count = 0.0;
+  for (int layer = 0; layer < layers; ++layer) {
+    const double outer = double(radius) - double(layer) * spacing;
+    if (outer <= 0.0) break;
+    const double r = 0.5 * (outer + std::max(0.0, outer - spacing));
+    count += std::max(1.0, std::round(4.0 * std::numbers::pi * r * r / (double(spacing) * spacing)));
+  }
+  return count;
+}
+
+}  // namespace
+
+double count_boundary(const SolidSet& solids, float spacing, float h) {
+  const int layers = layer_count(spacing, h);
+  double total = 0.0;
+  for (const Solid& s : solids.solids()) {
+    if (s.kind == Solid::Kind::Sphere) {
+      total += sphere_shell_count(s.radius, spacing, layers);
+      continue;
+    }
+    double all = 1.0, inner = 1.0;
+    for (int a = 0; a < 3; ++a) {
+      const double n = cells_along(s.max[a] - s.min[a], spacing);
+      if (s.kind == Solid::Kind::Tank) {
+        const bool open = s.open_top && a == s.up_axis;
+        all *= n + (open ? 1 : 2) * layers;  // the padded lattice around the free space
+        inner *= n;
+      } else {
+        all *= n;
+        inner *= std::max(0.0, n - 2.0 * layers);  // the core left out of a box's shell
+      }
+    }
+    total += all - inner;
+  }
+  return total;
+}
+
 Boundary sample_boundary(const SolidSet& solids, float spacing, float h) {
   Boundary b;
-  // Layers whose centre (k + 1/2) spacing lies within h of the surface.
-  const int layers = std::max(1, int(std::ceil(h / spacing - 0.5f - 1e-4f)));
+  const int layers = layer_count(spacing, h);
   const auto& list = solids.solids();
   for (size_t s = 0; s < list.size(); ++s) {
     const Solid& solid = list[s];

@@ -62,6 +62,10 @@ struct SolidPlacement {
 // Samples every solid at `spacing` (m, adjusted per axis to fit the solid exactly) within depth h.
 Boundary sample_boundary(const SolidSet& solids, float spacing, float h);
 
+// The number of particles sample_boundary makes (exact, without making them; as a double so that
+// absurd solids are counted rather than overflowed).
+double count_boundary(const SolidSet& solids, float spacing, float h);
+
 // Places the particles (one placement per solid; a no-op after the first call when nothing moves:
 // static walls keep their grid, volumes and zero velocities) and sets their velocities.
 void place_boundary(Boundary& b, const std::vector<SolidPlacement>& placements, bool first);

@@ -1,5 +1,6 @@
 #include "particles.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
@@ -42,6 +43,19 @@ void Particles::reorder(std::span<const uint32_t> order) {
   permute(divergence_warm, order, f_scratch);
 }
 
+BlockLattice block_lattice(const FluidBlock& b, float radius) {
+  const double d = 2.0 * double(radius);
+  BlockLattice l;
+  for (int a = 0; a < 3; ++a) {
+    const double extent = double(b.max[a]) - double(b.min[a]);
+    // Tolerate extents that are multiples of d up to rounding; clamped so that an absurd block is
+    // counted (and refused), not overflowed.
+    l.n[a] = std::clamp(std::floor(extent / d + 1e-4), 0.0, 4.0e9);
+    l.start[a] = double(b.min[a]) + 0.5 * (extent - l.n[a] * d) + 0.5 * d;
+  }
+  return l;
+}
+
 Particles fill_blocks(const std::vector<FluidBlock>& blocks, float radius, const SolidSet& solids, size_t& skipped) {
   const double d = 2.0 * double(radius);
   std::vector<Vec3f> points;
@@ -50,18 +64,13 @@ Particles fill_blocks(const std::vector<FluidBlock>& blocks, float radius, const
     const FluidBlock& b = blocks[bi];
     if (!finite(b.min) || !finite(b.max) || !(b.min.array() < b.max.array()).all())
       fail("fluid block ", bi, ": min must be below max on every axis");
-    int n[3];
-    double start[3];
-    for (int a = 0; a < 3; ++a) {
-      const double extent = double(b.max[a]) - double(b.min[a]);
-      n[a] = int(std::floor(extent / d + 1e-4));  // tolerate extents that are multiples of d up to rounding
-      start[a] = double(b.min[a]) + 0.5 * (extent - n[a] * d) + 0.5 * d;
-    }
-    if (double(n[0]) * n[1] * n[2] > 2.0e9) fail("fluid block ", bi, ": too many particles for radius ", radius);
+    const BlockLattice l = block_lattice(b, radius);
+    if (l.count() > 2.0e9) fail("fluid block ", bi, ": too many particles for radius ", radius);
+    const int n[3] = {int(l.n[0]), int(l.n[1]), int(l.n[2])};
     for (int k = 0; k < n[2]; ++k)
       for (int j = 0; j < n[1]; ++j)
         for (int i = 0; i < n[0]; ++i) {
-          const Vec3f p(float(start[0] + i * d), float(start[1] + j * d), float(start[2] + k * d));
+          const Vec3f p(float(l.start[0] + i * d), float(l.start[1] + j * d), float(l.start[2] + k * d));
           if (solids.inside(p)) {
             ++skipped;
             continue;

@@ -30,6 +30,14 @@ struct Particles {
   void reorder(std::span<const uint32_t> order);
 };
 
+// The lattice of spacing 2r centred in a block: n[a] points from start[a] along each axis (n may be 0).
+struct BlockLattice {
+  double n[3] = {0, 0, 0};
+  double start[3] = {0, 0, 0};  // m, the first point's coordinates
+  double count() const { return n[0] * n[1] * n[2]; }
+};
+BlockLattice block_lattice(const FluidBlock& block, float radius);
+
 // Fills the blocks on lattices of spacing 2r centred in each block, in block order, then z, y, x
 // (x fastest); ids follow that order. Lattice points inside `solids` are skipped and counted.
 Particles fill_blocks(const std::vector<FluidBlock>& blocks, float radius, const SolidSet& solids, size_t& skipped);

@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "fluid/forces.h"
+#include "fluid/memory_estimate.h"
 #include "fluid/pressure.h"
 #include "fluid/reduce.h"
 #include "fluid/time_step.h"
@@ -30,6 +31,8 @@ FluidSolver::FluidSolver(FluidSolverParams params, const std::vector<FluidBlock>
     : params_(params), solids_(std::move(solids)), kernel_(4.0f * params.particle_radius) {
   validate(params_);
   solids_.validate();
+  fluid::check_memory(fluid::estimate_memory(params_, blocks, solids_), fluid::available_memory_bytes());
+  limits_ = fluid::blow_up_limits(params_, blocks, solids_);
   const float r = params_.particle_radius;
   volume_ = 8.0f * r * r * r;
   dt_prev_ = params_.max_dt;
@@ -105,8 +108,11 @@ void FluidSolver::update_neighbourhoods() {
   fluid::build_neighbourhoods(grid_, boundary_, kernel_, volume_, particles_, neighbourhoods_);
 }
 
-void FluidSolver::advance_to(double t) {
-  while (time_ < t) step_to(t);
+void FluidSolver::advance_to(double t, const std::function<void()>& after_step) {
+  while (time_ < t) {
+    step_to(t);
+    if (after_step) after_step();
+  }
 }
 
 double FluidSolver::step() { return step_to(INFINITY); }
@@ -141,6 +147,7 @@ double FluidSolver::step_to(double target) {
     dt = fluid::fit_to_remaining(choice.dt, target - time_);
   }
   const double t_end = dt == target - time_ ? target : time_ + dt;
+  double density_error = 0.0;
 
   // Predict velocities, then make the density after this step rho0 ([BK17], constant-density solver).
   {
@@ -152,6 +159,7 @@ double FluidSolver::step_to(double target) {
     if (boundary_.any_moving) fluid::set_boundary_velocity(boundary_, step_placements(time_, t_end));
     const fluid::SolveResult r = fluid::density_solve(params_, neighbourhoods_, boundary_, dt, p);
     density_iterations_ += uint64_t(r.iterations);
+    density_error = r.error;
     stats_.density_error = r.error;
     stats_.max_density_error = std::max(stats_.max_density_error, r.error);
     stats_.density_unconverged += r.converged ? 0 : 1;
@@ -174,6 +182,7 @@ double FluidSolver::step_to(double target) {
     time_ = t_end;
     fluid::place_boundary(boundary_, placements_at(time_), false);
     project_out_of_solids();
+    fluid::check_blow_up(limits_, params_, p, density_error, time_);
   }
 
   dt_prev_ = dt;
@@ -208,6 +217,83 @@ void FluidSolver::project_out_of_solids() {
     return count;
   });
   stats_.corrections += uint64_t(moved);
+}
+
+FluidRestartState FluidSolver::restart_state(int frame) const {
+  const fluid::Particles& p = particles_;
+  FluidRestartState s;
+  s.frame = frame;
+  s.time = time_;
+  s.dt_prev = dt_prev_;
+  s.particle_radius = params_.particle_radius;
+  s.steps = stats_.steps;
+  s.density_iterations = density_iterations_;
+  s.divergence_iterations = divergence_iterations_;
+  s.density_unconverged = stats_.density_unconverged;
+  s.divergence_unconverged = stats_.divergence_unconverged;
+  s.corrections = stats_.corrections;
+  s.dt_clamped_to_min = stats_.dt_clamped_to_min;
+  s.dt_sum = dt_sum_;
+  s.density_error = stats_.density_error;
+  s.max_density_error = stats_.max_density_error;
+  s.divergence_error = stats_.divergence_error;
+  s.min_dt_used = stats_.min_dt_used;
+  s.max_dt_used = stats_.max_dt_used;
+  s.ids = p.id;
+  s.positions = p.x;
+  s.velocities = p.v;
+  if (params_.warm_start) {  // never read otherwise
+    s.density_warm = p.density_warm;
+    s.divergence_warm = p.divergence_warm;
+  }
+  return s;
+}
+
+void FluidSolver::restore(const FluidRestartState& s) {
+  const size_t n = particles_.size();
+  if (!bodies_.empty())
+    fail("fluid solver: cannot continue a saved state with dynamic solids (Bullet's contact state is not saved)");
+  if (s.size() != n || s.positions.size() != n || s.velocities.size() != n)
+    fail("fluid solver: the saved state has ", s.size(), " particles; the scene makes ", n);
+  if (s.particle_radius != params_.particle_radius)
+    fail("fluid solver: the saved state has particle radius ", s.particle_radius, " m; the scene ",
+         params_.particle_radius, " m");
+  if (params_.warm_start && (s.density_warm.size() != n || s.divergence_warm.size() != n))
+    fail("fluid solver: warm_start is on but the saved state holds no warm-start pressures");
+  if (!(s.dt_prev > 0.0) || !std::isfinite(s.time))
+    fail("fluid solver: the saved state's time ", s.time, " s and last step ", s.dt_prev, " s are not usable");
+  std::vector<char> seen(n, 0);
+  for (uint32_t id : s.ids) {
+    if (id >= n || seen[id]) fail("fluid solver: the saved state's ids are not a permutation of 0..", n - 1);
+    seen[id] = 1;
+  }
+  fluid::Particles& p = particles_;
+  p.id = s.ids;
+  p.x = s.positions;
+  p.v = s.velocities;
+  if (params_.warm_start) {
+    p.density_warm = s.density_warm;
+    p.divergence_warm = s.divergence_warm;
+  }
+  time_ = s.time;
+  dt_prev_ = s.dt_prev;
+  stats_.steps = s.steps;
+  density_iterations_ = s.density_iterations;
+  divergence_iterations_ = s.divergence_iterations;
+  stats_.density_unconverged = s.density_unconverged;
+  stats_.divergence_unconverged = s.divergence_unconverged;
+  stats_.corrections = s.corrections;
+  stats_.dt_clamped_to_min = s.dt_clamped_to_min;
+  dt_sum_ = s.dt_sum;
+  stats_.density_error = s.density_error;
+  stats_.max_density_error = s.max_density_error;
+  stats_.divergence_error = s.divergence_error;
+  stats_.min_dt_used = s.min_dt_used;
+  stats_.max_dt_used = s.max_dt_used;
+  // The particles come in the order the grid sorted them into, and sorting them again keeps it (the
+  // sort breaks ties by index), so the grid, pairs and their summation order are the saved run's.
+  fluid::place_boundary(boundary_, placements_at(time_), false);
+  update_neighbourhoods();
 }
 
 FluidFrame FluidSolver::frame(int index) const {

@@ -31,15 +31,18 @@
 // [AIA12] Akinci, Ihmsen, Akinci, Solenthaler, Teschner: Versatile rigid-fluid coupling for
 // incompressible SPH, ACM TOG (SIGGRAPH) 2012. [Mon05] Monaghan: Smoothed particle hydrodynamics,
 // Rep. Prog. Phys. 68, 2005.
+#include <functional>
 #include <vector>
 
 #include "core/frames.h"
+#include "fluid/blow_up.h"
 #include "fluid/boundary.h"
 #include "fluid/coupling.h"
 #include "fluid/fluid_params.h"
 #include "fluid/kernel.h"
 #include "fluid/neighbours.h"
 #include "fluid/particles.h"
+#include "fluid/restart_state.h"
 #include "fluid/rigid_bodies.h"
 #include "grid/neighbour_grid.h"
 #include "scene/solids.h"
@@ -50,13 +53,23 @@ class FluidSolver {
  public:
   // Fills the blocks (see FluidBlock; lattice points inside solids or outside a tank are left out and
   // counted in stats().removed_at_start) and samples the solids. Throws Error for bad parameters,
-  // bad solid motions, or blocks that hold no particle.
+  // bad solid motions, blocks that hold no particle, or a scene whose estimated memory
+  // (memory_estimate.h) exceeds what the machine has available, before allocating anything.
   FluidSolver(FluidSolverParams params, const std::vector<FluidBlock>& blocks, SolidSet solids);
 
   // Steps until time() == t exactly (the last steps are fitted to land on t). No-op if t <= time().
-  void advance_to(double t);
-  // One step of at most the CFL time step; returns dt (s).
+  // `after_step`, if given, is called after every step (progress reports).
+  void advance_to(double t, const std::function<void()>& after_step = {});
+  // One step of at most the CFL time step; returns dt (s). Throws Error when the step blew up
+  // (blow_up.h: a density error or a particle's energy past the limits), naming the value and bound.
   double step();
+
+  // The state the next step starts from (restart_state.h), labelled with `frame`.
+  FluidRestartState restart_state(int frame) const;
+  // Continues from a saved state of a solver built with the same parameters, blocks and solids: every
+  // later step gives the same bytes as the solver that saved it. Throws Error when the state does
+  // not fit (particle count, ids, radius, warm start) or the scene has dynamic bodies.
+  void restore(const FluidRestartState& state);
 
   // The current state in id order (ids 0..n-1), labelled with `index` and the current time.
   FluidFrame frame(int index) const;
@@ -75,6 +88,7 @@ class FluidSolver {
   // (SolidSet::at_time(t).posed(body_poses())): what the fluid particles are kept out of.
   SolidSet solids_now() const;
   const fluid::RigidBodies& bodies() const { return bodies_; }
+  const fluid::BlowUpLimits& blow_up_limits() const { return limits_; }
   float particle_volume() const { return volume_; }  // (2r)^3, m^3
   // Current per-particle density rho / rho0 (neighbourhoods are always built at the current
   // positions), in id order.
@@ -105,6 +119,7 @@ class FluidSolver {
   std::vector<float> body_radius_;  // farthest point from the centre, per body, m
   NeighbourGrid grid_;
   fluid::Neighbourhoods neighbourhoods_;
+  fluid::BlowUpLimits limits_;
   double time_ = 0.0;
   double dt_prev_;
   SolverStats stats_;

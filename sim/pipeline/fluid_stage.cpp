@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/progress.h"
 #include "fluid/solver.h"
+#include "fluid_continuation.h"
 #include "io/bgeo.h"
 #include "io/frame_pattern.h"
 #include "io/spume_cache.h"
@@ -88,32 +89,67 @@ FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions
   const std::filesystem::path dir = out / "fluid";
   const int last = fluid_stage_last_frame(scene, options);
   FluidStageSummary summary;
-  summary.frames = last + 1;
 
   const bool has_bodies = scene.solids.any_dynamic();
   const RecordMatch match = fluid_caches_match(scene, options.out_root, last);
   if (!options.force && match.kind == RecordMatch::Kind::Current) {
     summary.reused = true;
+    summary.frames = last + 1;
     return summary;
   }
   summary.why = options.force ? "--force" : match.why;
-  remove_stage_record(dir);
-  remove_fluid_frames(out);
+  std::string restart_why;
+  std::optional<FluidContinuation> resume;
+  if (!options.force && match.kind == RecordMatch::Kind::Prefix)
+    resume = find_fluid_continuation(scene, out, restart_why);
 
+  // Built before anything on disk is touched: it refuses a scene that would not fit in memory.
   FluidSolver solver(scene.solver.params, scene.solver.blocks, scene.solids);
+  if (resume) {
+    try {
+      solver.restore(resume->state);
+    } catch (const Error& e) {  // restore checks before it changes anything: the solver is still at t = 0
+      restart_why = e.what();
+      resume.reset();
+    }
+  }
+  // Continuing keeps the record: it still describes the frames it names, if this run is interrupted.
+  if (!resume) {
+    remove_stage_record(dir);
+    remove_fluid_frames(out);
+    remove_fluid_restarts(out);
+  }
+  const int first = resume ? resume->last_frame + 1 : 0;
+  summary.continued_from = resume ? resume->last_frame : -1;
+  summary.frames = last - first + 1;
   summary.particles = solver.size();
-  Progress progress("fluid " + scene.name, size_t(last) + 1, options.quiet);
+
+  Progress progress("fluid " + scene.name, size_t(summary.frames), options.quiet, options.partial_progress_interval);
+  if (resume)
+    progress.message(str("fluid: continuing from frame ", resume->last_frame, " (", summary.why, "; solver state ",
+                         fluid_restart_path(out, resume->last_frame).string(), "): frames ", first, "-", last));
+  else if (match.kind == RecordMatch::Kind::Prefix && !options.force)
+    progress.message(str("fluid: re-solving from t = 0 (", match.why, "): cannot continue: ", restart_why));
   progress.message(str(solver.size(), " fluid particles, ", solver.stats().boundary_particles,
-                       " boundary particles, frames 0-", last, " at ", scene.fluid.fps, " fps (", summary.why, ")"));
-  std::string stats =
-      "frame,time,steps,mean_dt,density_error_pct,max_density_error_pct,density_iterations,divergence_iterations,"
-      "corrections,seconds\n";
+                       " boundary particles, frames ", first, "-", last, " at ", scene.fluid.fps, " fps (",
+                       summary.why, ")"));
+  std::string stats = resume ? resume->stats
+                             : "frame,time,steps,mean_dt,density_error_pct,max_density_error_pct,density_iterations,"
+                               "divergence_iterations,corrections,seconds\n";
   SolverStats before = solver.stats();
   BodyTrack bodies;
   bodies.fps = scene.fluid.fps;
-  for (int f = 0; f <= last; ++f) {
+  for (int f = first; f <= last; ++f) {
     const auto t0 = std::chrono::steady_clock::now();
-    solver.advance_to(double(f) / scene.fluid.fps);
+    const double t = double(f) / scene.fluid.fps;
+    const size_t done = size_t(f - first);
+    with_context(str("fluid frame ", f, " (t = ", solver.time(), " to ", t, " s)"), [&] {
+      solver.advance_to(t, [&] {
+        if (progress.partial_due())
+          progress.partial(done, str("frame ", f, ": ", solver.stats().steps - before.steps, " steps, t = ",
+                                     solver.time(), " of ", t, " s"));
+      });
+    });
     const FluidFrame frame = solver.frame(f);
     write_fluid_cache(fluid_cache_path(out, f), frame, scene.fluid.particle_radius);
     if (has_bodies) bodies.frames.push_back(solver.body_poses());
@@ -121,13 +157,19 @@ FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions
     const SolverStats now = solver.stats();
     stats += stats_row(f, frame.time, now, before,
                        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    progress.update(size_t(f) + 1, str(now.steps - before.steps, " steps, density error ",
-                                       100.0 * now.density_error, "%"));
+    progress.update(done + 1, str("frame ", f, ": ", now.steps - before.steps, " steps, density error ",
+                                  100.0 * now.density_error, "%"));
     before = now;
   }
   if (has_bodies) write_body_track(body_track_path(out), bodies);
+  else {
+    FluidRestartState state = solver.restart_state(last);
+    state.digest = fluid_restart_digest(scene);
+    write_restart_state(fluid_restart_path(out, last), state);
+  }
   write_file_atomically(dir / "solver_stats.csv", [&](std::ostream& o) { o << stats; });
   write_stage_record(dir, fluid_stage_record(scene, last));
+  remove_fluid_restarts(out, last);
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const SolverStats s = solver.stats();
   progress.finish(str(s.steps, " steps, mean dt ", s.average_dt * 1e3, " ms, max density error ",

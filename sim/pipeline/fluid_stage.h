@@ -5,8 +5,13 @@
 //   OUT/<scene>/fluid/solver_stats.csv     steps, time step, density error, iterations per frame
 //   OUT/<scene>/fluid/bodies.csv           the dynamic solids' poses per frame (body_track_file.h)
 //   OUT/<scene>/fluid_bgeo/fluid_0000.bgeo the same as BGEO, when output.fluid_bgeo is set
+//   OUT/<scene>/fluid/restart_0000.spr     the solver's state after the last frame (fluid_continuation.h)
 // Current caches (cache_state.h) are reused and the solver does not run; a folder holding more frames
-// than asked for serves a shorter range. A stale or incomplete folder is simulated again from t = 0.
+// than asked for serves a shorter range; one holding a current prefix of the frames is continued
+// from its last frame (the same bytes as one run), except with dynamic solids (fluid_continuation.h
+// says why it then starts again). A stale or incomplete folder is simulated again from t = 0.
+// A solver that blows up (fluid/blow_up.h) stops the stage with an error naming the frame; no
+// record is written for the frames it did not finish.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -22,11 +27,13 @@ struct FluidStageOptions {
   bool quiet = false;
   bool force = false;  // simulate even when the caches are current
   std::optional<int> last_frame;  // solve only up to this frame (clamped to the scene's last)
+  double partial_progress_interval = -1.0;  // s between progress lines within a frame (Progress's default: < 0)
 };
 
 struct FluidStageSummary {
   bool reused = false;  // the caches were current; the solver did not run
-  int frames = 0;
+  int frames = 0;       // frames solved (all wanted frames when reused)
+  int continued_from = -1;  // the cached frame the solver continued from (-1: solved from t = 0)
   size_t particles = 0;
   double seconds = 0.0;
   std::string why;  // when the solver ran: what made the caches stale

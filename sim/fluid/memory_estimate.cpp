@@ -1,0 +1,80 @@
+#include "memory_estimate.h"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "core/error.h"
+#include "fluid/boundary.h"
+#include "fluid/particles.h"
+
+namespace spume::fluid {
+namespace {
+
+std::string gigabytes(double bytes) {
+  std::ostringstream out;
+  out.precision(bytes < 1e10 ? 2 : 3);
+  out << bytes / 1e9 << " GB";
+  return out.str();
+}
+
+std::string count(double n) {
+  char buffer[48];
+  std::snprintf(buffer, sizeof buffer, n < 1e12 ? "%.0f" : "%.3g", n);
+  return buffer;
+}
+
+// A number from a one-number file (cgroup v2's memory.max holds "max" when unlimited).
+std::optional<double> number_in(const char* path) {
+  std::ifstream in(path);
+  std::string text;
+  if (!(in >> text)) return std::nullopt;
+  try {
+    size_t used = 0;
+    const double value = std::stod(text, &used);
+    if (used != text.size()) return std::nullopt;
+    return value;
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
+}  // namespace
+
+MemoryEstimate estimate_memory(const FluidSolverParams& params, const std::vector<FluidBlock>& blocks,
+                               const SolidSet& solids) {
+  MemoryEstimate e;
+  for (const FluidBlock& b : blocks) e.fluid_particles += block_lattice(b, params.particle_radius).count();
+  e.boundary_particles = count_boundary(solids, params.boundary_spacing * params.particle_radius,
+                                        4.0f * params.particle_radius);
+  e.bytes = kBytesPerFluidParticle * e.fluid_particles + kBytesPerBoundaryParticle * e.boundary_particles;
+  return e;
+}
+
+std::optional<double> available_memory_bytes() {
+  std::optional<double> available;
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key, unit;
+  double kilobytes = 0.0;
+  while (meminfo >> key >> kilobytes >> unit)
+    if (key == "MemAvailable:") available = kilobytes * 1024.0;
+  const std::optional<double> limit = number_in("/sys/fs/cgroup/memory.max");
+  const std::optional<double> used = number_in("/sys/fs/cgroup/memory.current");
+  if (limit && used) {
+    const double room = std::max(0.0, *limit - *used);
+    available = available ? std::min(*available, room) : room;
+  }
+  return available;
+}
+
+void check_memory(const MemoryEstimate& e, std::optional<double> available) {
+  if (!available || e.bytes <= *available) return;
+  fail("fluid solver: the scene needs about ", gigabytes(e.bytes), " of memory (", count(e.fluid_particles),
+       " fluid particles at about ", kBytesPerFluidParticle, " bytes each, ", count(e.boundary_particles),
+       " boundary particles at about ", kBytesPerBoundaryParticle, " bytes each), but only ", gigabytes(*available),
+       " is available; make fluid.radius larger (the count grows as 1 / radius^3) or the fluid blocks smaller");
+}
+
+}  // namespace spume::fluid

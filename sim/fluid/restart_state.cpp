@@ -1,0 +1,130 @@
+#include "restart_state.h"
+
+#include <zlib.h>
+
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <ostream>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "io/io_bytes.h"
+
+namespace spume {
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "restart files are written straight from memory");
+static_assert(sizeof(Vec3f) == 12, "Vec3f must be three packed floats");
+
+constexpr char kMagic[] = "SPUMERS1";
+constexpr size_t kHeaderSize = 168;
+constexpr size_t kDigestSize = 16;
+constexpr uint32_t kHasWarmStart = 1u;
+
+uint32_t crc_of(uint32_t crc, const void* data, size_t bytes) {
+  return uint32_t(crc32_z(crc, static_cast<const Bytef*>(data), bytes));
+}
+
+std::string header_of(const FluidRestartState& s) {
+  using io::Endian;
+  std::string h(kMagic, 8);
+  io::store(h, kRestartVersion, Endian::Little);
+  io::store(h, s.frame, Endian::Little);
+  io::store(h, s.time, Endian::Little);
+  io::store(h, s.dt_prev, Endian::Little);
+  io::store(h, s.particle_radius, Endian::Little);
+  io::store(h, s.density_warm.empty() ? 0u : kHasWarmStart, Endian::Little);
+  io::store(h, uint64_t(s.size()), Endian::Little);
+  std::string digest = s.digest.substr(0, kDigestSize);
+  digest.resize(kDigestSize, '\0');
+  h += digest;
+  for (uint64_t c : {s.steps, s.density_iterations, s.divergence_iterations, s.density_unconverged,
+                     s.divergence_unconverged, s.corrections, s.dt_clamped_to_min})
+    io::store(h, c, Endian::Little);
+  for (double d : {s.dt_sum, s.density_error, s.max_density_error, s.divergence_error, s.min_dt_used, s.max_dt_used})
+    io::store(h, d, Endian::Little);
+  return h;
+}
+
+template <typename T>
+void read_array(io::ByteReader& r, std::vector<T>& out, size_t n, const char* what) {
+  r.require_array(n, sizeof(T), what);
+  out.resize(n);
+  if (n) std::memcpy(static_cast<void*>(out.data()), r.take(n * sizeof(T), what).data(), n * sizeof(T));
+}
+
+}  // namespace
+
+void write_restart_state(const std::filesystem::path& path, const FluidRestartState& s) {
+  const size_t n = s.size();
+  if (s.positions.size() != n || s.velocities.size() != n ||
+      (!s.density_warm.empty() && (s.density_warm.size() != n || s.divergence_warm.size() != n)))
+    fail(path.string(), ": restart state arrays of unequal length");
+  const std::string header = header_of(s);
+  write_file_atomically(path, [&](std::ostream& out) {
+    uint32_t crc = crc_of(0, nullptr, 0);
+    auto put = [&](const void* data, size_t bytes) {
+      if (bytes == 0) return;
+      out.write(static_cast<const char*>(data), std::streamsize(bytes));
+      crc = crc_of(crc, data, bytes);
+    };
+    put(header.data(), header.size());
+    put(s.ids.data(), n * sizeof(uint32_t));
+    put(s.positions.data(), n * sizeof(Vec3f));
+    put(s.velocities.data(), n * sizeof(Vec3f));
+    put(s.density_warm.data(), s.density_warm.size() * sizeof(float));
+    put(s.divergence_warm.data(), s.divergence_warm.size() * sizeof(float));
+    out.write(reinterpret_cast<const char*>(&crc), 4);
+  });
+}
+
+FluidRestartState read_restart_state(const std::filesystem::path& path) {
+  const std::string where = path.string();
+  const std::string bytes = io::read_file_bytes(path);
+  if (bytes.size() < kHeaderSize + 4 || bytes.compare(0, 8, kMagic) != 0)
+    fail(where, ": not a spume restart file (magic '", kMagic, "' and a ", kHeaderSize, "-byte header expected)");
+  const uint32_t stored = io::load<uint32_t>(bytes.data() + bytes.size() - 4, io::Endian::Little);
+  const uint32_t computed = crc_of(crc_of(0, nullptr, 0), bytes.data(), bytes.size() - 4);
+  if (stored != computed) fail(where, ": corrupt: CRC-32 mismatch (stored ", stored, ", computed ", computed, ")");
+
+  io::ByteReader r(std::string_view(bytes).substr(0, bytes.size() - 4), where);
+  r.skip(8, "magic");
+  FluidRestartState s;
+  const uint32_t version = r.read<uint32_t>("version");
+  if (version != kRestartVersion) fail(where, ": restart file version ", version, "; this build reads ", kRestartVersion);
+  s.frame = r.read<int32_t>("frame");
+  s.time = r.read<double>("time");
+  s.dt_prev = r.read<double>("dt_prev");
+  s.particle_radius = r.read<float>("particle radius");
+  const uint32_t flags = r.read<uint32_t>("flags");
+  if (flags & ~kHasWarmStart) fail(where, ": restart flags ", flags, "; only bit 0 (warm-start arrays) is known");
+  const uint64_t n = r.read<uint64_t>("count");
+  const std::string_view digest = r.take(kDigestSize, "digest");
+  s.digest = std::string(digest.substr(0, digest.find('\0')));
+  for (uint64_t* c : {&s.steps, &s.density_iterations, &s.divergence_iterations, &s.density_unconverged,
+                      &s.divergence_unconverged, &s.corrections, &s.dt_clamped_to_min})
+    *c = r.read<uint64_t>("counters");
+  for (double* d : {&s.dt_sum, &s.density_error, &s.max_density_error, &s.divergence_error, &s.min_dt_used,
+                    &s.max_dt_used})
+    *d = r.read<double>("statistics");
+  const uint64_t per_particle = 4 + 12 + 12 + (flags & kHasWarmStart ? 8 : 0);
+  if (n > r.remaining() / per_particle || n * per_particle != r.remaining())
+    fail(where, ": ", n, " particles do not fit the file size ", bytes.size(), " bytes (truncated or corrupt)");
+  read_array(r, s.ids, n, "ids");
+  read_array(r, s.positions, n, "positions");
+  read_array(r, s.velocities, n, "velocities");
+  if (flags & kHasWarmStart) {
+    read_array(r, s.density_warm, n, "density warm start");
+    read_array(r, s.divergence_warm, n, "divergence warm start");
+  }
+  if (!std::isfinite(s.time) || !std::isfinite(s.dt_prev) || !(s.dt_prev > 0.0) || !std::isfinite(s.particle_radius))
+    fail(where, ": time ", s.time, ", dt_prev ", s.dt_prev, " and radius ", s.particle_radius,
+         " must be finite (dt_prev > 0)");
+  for (size_t i = 0; i < n; ++i)
+    if (!finite(s.positions[i]) || !finite(s.velocities[i]))
+      fail(where, ": particle ", s.ids[i], " has a non-finite position or velocity");
+  return s;
+}
+
+}  // namespace spume
