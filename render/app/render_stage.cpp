@@ -23,12 +23,22 @@
 namespace spume {
 namespace {
 
+// Bump when spume's pictures change for the same keys and caches (frames on disk are then stale).
+constexpr int kRenderGeneration = 1;
+
 // Bounds of what the camera should see when the scene sets no camera: the tanks and the fluid over
 // the whole sequence (a dam break stays in the picture from its first frame to its last).
 Aabb scene_bounds(const SolidSet& solids, const FluidSurvey& survey) {
-  Aabb box = survey.bounds();
+  const Aabb fluid = survey.bounds();
+  Aabb box = fluid;
   for (const Solid& s : solids.solids())
-    if (s.kind == Solid::Kind::Tank) box.extend(Aabb{s.min, s.max});
+    if (s.kind == Solid::Kind::Tank) {
+      // A tank far taller than the water would shrink the water to a strip: its height counts only
+      // up to where the fluid ever reaches.
+      Aabb tank{s.min, s.max};
+      if (!fluid.empty()) tank.max[s.up_axis] = std::max(std::min(s.max[s.up_axis], fluid.max[s.up_axis]), s.min[s.up_axis]);
+      box.extend(tank);
+    }
   return box;
 }
 
@@ -106,7 +116,17 @@ std::string frame_record(const PreparedRender& p, const nlohmann::json& render_k
     const FileIdentity id = file_identity(path);
     return nlohmann::json::array({id.size, id.mtime_ns, id.crc});
   };
-  nlohmann::json record = {{"render", render_keys}, {"sequence", p.sequence_digest}};
+  // What the keys resolved to (a camera framed from the sequence, the ground's height), and the
+  // renderer's generation: a spume whose pictures differ for the same keys draws them again.
+  nlohmann::json cameras = nlohmann::json::array();
+  for (const CameraKey& k : p.settings.camera)
+    cameras.push_back({k.time, k.position.x(), k.position.y(), k.position.z(), k.target.x(), k.target.y(),
+                       k.target.z(), k.fov_y_degrees});
+  nlohmann::json record = {{"render", render_keys},
+                           {"sequence", p.sequence_digest},
+                           {"camera", cameras},
+                           {"ground_height", p.settings.environment.ground_height},
+                           {"renderer", kRenderGeneration}};
   if (p.settings.draws_diffuse()) record["diffuse"] = identity(diffuse_cache_path(p.scene_out, frame));
   if (p.settings.draw_surface) {
     const std::filesystem::path fluid = expand_frame_pattern(p.inputs.survey.pattern, frame);

@@ -27,12 +27,19 @@ cleanup() {
   # Daemons were started by this script only; stop them by their pids.
   for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
   for pid in "${pids[@]}"; do wait "$pid" 2>/dev/null || true; done
-  if [ -f "$work/munged.pid" ]; then kill "$(cat "$work/munged.pid")" 2>/dev/null || true; fi
+  if [ -f "$work/munged.pid" ]; then
+    munged_pid=$(cat "$work/munged.pid")
+    kill "$munged_pid" 2>/dev/null || true
+    # munged is not our child: wait for it (and any job step still writing logs) to go.
+    for _ in $(seq 50); do kill -0 "$munged_pid" 2>/dev/null || break; sleep 0.1; done
+  fi
   if [ $status -ne 0 ]; then
     echo "--- logs (test failed) ---"
     tail -n 20 "$work"/log/* "$work"/out/*/farm/logs/* 2>/dev/null || true
   fi
-  rm -rf "$work"
+  # A job step that outlives the daemons can still be writing its log while the folder goes: try
+  # again, and never let the clean-up decide the verdict.
+  for _ in 1 2 3; do rm -rf "$work" 2>/dev/null && break; sleep 1; done
   exit $status
 }
 trap cleanup EXIT
