@@ -18,8 +18,8 @@
 #include "pipeline/frame_renderer.h"
 #include "pipeline/render_settings.h"
 #include "pipeline/scene_inputs.h"
-#include "scene/body_track.h"
-#include "scene/fluid_source.h"
+#include "geometry/body_track.h"
+#include "io/fluid_source.h"
 #include "scene/sim_scene.h"
 
 namespace spume {

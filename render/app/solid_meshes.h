@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "pipeline/frame_renderer.h"
-#include "scene/solids.h"
+#include "geometry/solids.h"
 
 namespace spume {
 

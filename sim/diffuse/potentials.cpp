@@ -7,7 +7,7 @@
 #include "core/parallel.h"
 #include "diffuse/kernels.h"
 #include "grid/block_buffer.h"
-#include "scene/solid_coverage.h"
+#include "geometry/solid_coverage.h"
 
 namespace spume {
 namespace {

@@ -6,7 +6,7 @@
 #include "diffuse/fluid_state.h"
 #include "diffuse/params.h"
 #include "grid/neighbour_grid.h"
-#include "scene/solids.h"
+#include "geometry/solids.h"
 
 namespace spume {
 
@@ -27,7 +27,7 @@ struct FormationPotentials {
 // of a full neighbourhood within h), else zero: inside, the direction is noise (MODEL.md §8.10).
 // `grid` must be built over state.positions with support radius h.
 // `solids` (may be null) cut the neighbourhood: next to a wet wall the count and the gradient include
-// the water the wall stands for (scene/solid_coverage.h), so the layer against a wall is interior.
+// the water the wall stands for (geometry/solid_coverage.h), so the layer against a wall is interior.
 void compute_normals(const NeighbourGrid& grid, float particle_volume, const DiffuseParams& params,
                      const SolidSet* solids, std::vector<Vec3f>& normals);
 

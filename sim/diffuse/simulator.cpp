@@ -7,7 +7,7 @@
 #include "core/parallel.h"
 #include "diffuse/advection.h"
 #include "diffuse/emission.h"
-#include "scene/solid_coverage.h"
+#include "geometry/solid_coverage.h"
 
 namespace spume {
 namespace {

@@ -13,7 +13,7 @@
 #include "diffuse/params.h"
 #include "diffuse/potentials.h"
 #include "grid/neighbour_grid.h"
-#include "scene/body_track.h"
+#include "geometry/body_track.h"
 
 namespace spume {
 

@@ -22,7 +22,7 @@
 #include "core/vec.h"
 #include "fluid/fluid_params.h"
 #include "fluid/particles.h"
-#include "scene/solids.h"
+#include "geometry/solids.h"
 
 namespace spume::fluid {
 

@@ -29,7 +29,7 @@
 
 #include "core/vec.h"
 #include "grid/neighbour_grid.h"
-#include "scene/solids.h"
+#include "geometry/solids.h"
 
 namespace spume::fluid {
 

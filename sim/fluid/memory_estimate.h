@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "fluid/fluid_params.h"
-#include "scene/solids.h"
+#include "geometry/solids.h"
 
 namespace spume::fluid {
 

@@ -6,7 +6,7 @@
 
 #include "core/vec.h"
 #include "fluid/fluid_params.h"
-#include "scene/solids.h"
+#include "geometry/solids.h"
 
 namespace spume::fluid {
 

@@ -9,6 +9,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "io/crc_file.h"
 #include "io/io_bytes.h"
 
 namespace spume {
@@ -21,10 +22,6 @@ constexpr char kMagic[] = "SPUMERS1";
 constexpr size_t kHeaderSize = 168;
 constexpr size_t kDigestSize = 16;
 constexpr uint32_t kHasWarmStart = 1u;
-
-uint32_t crc_of(uint32_t crc, const void* data, size_t bytes) {
-  return uint32_t(crc32_z(crc, static_cast<const Bytef*>(data), bytes));
-}
 
 std::string header_of(const FluidRestartState& s) {
   using io::Endian;
@@ -62,21 +59,7 @@ void write_restart_state(const std::filesystem::path& path, const FluidRestartSt
       (!s.density_warm.empty() && (s.density_warm.size() != n || s.divergence_warm.size() != n)))
     fail(path.string(), ": restart state arrays of unequal length");
   const std::string header = header_of(s);
-  write_file_atomically(path, [&](std::ostream& out) {
-    uint32_t crc = crc_of(0, nullptr, 0);
-    auto put = [&](const void* data, size_t bytes) {
-      if (bytes == 0) return;
-      out.write(static_cast<const char*>(data), std::streamsize(bytes));
-      crc = crc_of(crc, data, bytes);
-    };
-    put(header.data(), header.size());
-    put(s.ids.data(), n * sizeof(uint32_t));
-    put(s.positions.data(), n * sizeof(Vec3f));
-    put(s.velocities.data(), n * sizeof(Vec3f));
-    put(s.density_warm.data(), s.density_warm.size() * sizeof(float));
-    put(s.divergence_warm.data(), s.divergence_warm.size() * sizeof(float));
-    out.write(reinterpret_cast<const char*>(&crc), 4);
-  });
+  write_crc_file(path, header, s.ids, s.positions, s.velocities, s.density_warm, s.divergence_warm);
 }
 
 FluidRestartState read_restart_state(const std::filesystem::path& path) {
@@ -85,7 +68,7 @@ FluidRestartState read_restart_state(const std::filesystem::path& path) {
   if (bytes.size() < kHeaderSize + 4 || bytes.compare(0, 8, kMagic) != 0)
     fail(where, ": not a spume restart file (magic '", kMagic, "' and a ", kHeaderSize, "-byte header expected)");
   const uint32_t stored = io::load<uint32_t>(bytes.data() + bytes.size() - 4, io::Endian::Little);
-  const uint32_t computed = crc_of(crc_of(0, nullptr, 0), bytes.data(), bytes.size() - 4);
+  const uint32_t computed = crc32_update(crc32_start(), bytes.data(), bytes.size() - 4);
   if (stored != computed) fail(where, ": corrupt: CRC-32 mismatch (stored ", stored, ", computed ", computed, ")");
 
   io::ByteReader r(std::string_view(bytes).substr(0, bytes.size() - 4), where);

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "core/vec.h"
-#include "scene/solids.h"
+#include "geometry/solids.h"
 
 namespace spume::fluid {
 

@@ -45,7 +45,7 @@
 #include "fluid/restart_state.h"
 #include "fluid/rigid_bodies.h"
 #include "grid/neighbour_grid.h"
-#include "scene/solids.h"
+#include "geometry/solids.h"
 
 namespace spume {
 

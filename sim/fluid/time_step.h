@@ -2,7 +2,7 @@
 // The adaptive time step: a CFL condition with limits, and landing exactly on requested times.
 #include "fluid/fluid_params.h"
 #include "fluid/particles.h"
-#include "scene/solids.h"
+#include "geometry/solids.h"
 
 namespace spume::fluid {
 

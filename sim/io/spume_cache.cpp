@@ -10,6 +10,8 @@
 #include <ostream>
 #include <system_error>
 
+#include "io/crc_file.h"
+
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "io/io_bytes.h"
@@ -32,33 +34,13 @@ constexpr size_t kFluidHeaderSize = 40;
 constexpr size_t kDiffuseHeaderSize = 56;
 constexpr uint32_t kKnownFlags = kCacheHasVelocities | kCacheHasIds | kCacheHasMasses;
 
-uint32_t crc_update(uint32_t crc, const void* data, size_t bytes) {
-  return uint32_t(crc32_z(crc, static_cast<const Bytef*>(data), bytes));
-}
-
-// Output with a running CRC; arrays go out in one write each so large frames stream at disk speed.
-struct CrcWriter {
-  std::ostream& out;
-  uint32_t crc = uint32_t(crc32_z(0, nullptr, 0));
-  void write(const void* data, size_t bytes) {
-    if (bytes == 0) return;
-    out.write(static_cast<const char*>(data), std::streamsize(bytes));
-    crc = crc_update(crc, data, bytes);
-  }
-  template <typename T>
-  void write_array(const std::vector<T>& v) { write(v.data(), v.size() * sizeof(T)); }
-  void finish() {
-    const uint32_t c = crc;
-    out.write(reinterpret_cast<const char*>(&c), 4);
-  }
-};
 
 // Input with a running CRC; the header decides the exact file size before anything is allocated.
 struct CrcReader {
   std::string where;
   std::ifstream in;
   uint64_t file_size = 0;
-  uint32_t crc = uint32_t(crc32_z(0, nullptr, 0));
+  uint32_t crc = crc32_start();
 
   explicit CrcReader(const std::filesystem::path& path) : where(path.string()) {
     std::error_code ec;
@@ -72,7 +54,7 @@ struct CrcReader {
     if (bytes == 0) return;
     if (!in.read(static_cast<char*>(dst), std::streamsize(bytes)))
       fail(where, ": read failed in ", what, " (file truncated or unreadable)");
-    crc = crc_update(crc, dst, bytes);
+    crc = crc32_update(crc, dst, bytes);
   }
   template <typename T>
   void read_array(std::vector<T>& v, size_t n, const char* what) {
@@ -180,15 +162,7 @@ void write_fluid_cache(const std::filesystem::path& path, const FluidFrame& fram
   io::store(header, particle_radius, Endian::Little);
   io::store(header, uint64_t(frame.size()), Endian::Little);
   io::store(header, flags, Endian::Little);
-  write_file_atomically(path, [&](std::ostream& out) {
-    CrcWriter w{out};
-    w.write(header.data(), header.size());
-    w.write_array(frame.ids);
-    w.write_array(frame.positions);
-    w.write_array(frame.velocities);
-    w.write_array(frame.masses);
-    w.finish();
-  });
+  write_crc_file(path, header, frame.ids, frame.positions, frame.velocities, frame.masses);
 }
 
 FluidFrame read_fluid_cache(const std::filesystem::path& path, FluidCacheHeader* header) {
@@ -221,16 +195,7 @@ void write_diffuse_cache(const std::filesystem::path& path, const DiffuseFrame& 
   io::store(header, frame.time, Endian::Little);
   io::store(header, uint64_t(frame.size()), Endian::Little);
   for (size_t c : frame.count_by_type()) io::store(header, uint64_t(c), Endian::Little);
-  write_file_atomically(path, [&](std::ostream& out) {
-    CrcWriter w{out};
-    w.write(header.data(), header.size());
-    w.write_array(frame.ids);
-    w.write_array(frame.positions);
-    w.write_array(frame.velocities);
-    w.write_array(frame.lifetimes);
-    w.write_array(frame.types);
-    w.finish();
-  });
+  write_crc_file(path, header, frame.ids, frame.positions, frame.velocities, frame.lifetimes, frame.types);
 }
 
 DiffuseFrame read_diffuse_cache(const std::filesystem::path& path, DiffuseCacheHeader* header) {

@@ -50,10 +50,6 @@ std::vector<double> parse_row(const std::string& line, const std::string& where)
 
 }  // namespace
 
-std::filesystem::path body_track_path(const std::filesystem::path& scene_out) {
-  return scene_out / "fluid" / "bodies.csv";
-}
-
 void write_body_track(const std::filesystem::path& path, const BodyTrack& track) {
   write_file_atomically(path, [&](std::ostream& out) {
     out << kHeader << '\n';

@@ -6,12 +6,12 @@
 // with 9 significant digits so that every float reads back exactly.
 #include <filesystem>
 
-#include "scene/body_track.h"
+#include "geometry/body_track.h"
+#include "io/cache_layout.h"
 #include "scene/sim_scene.h"
 
 namespace spume {
 
-std::filesystem::path body_track_path(const std::filesystem::path& scene_out);
 void write_body_track(const std::filesystem::path& path, const BodyTrack& track);
 // Throws Error naming the file and line for anything malformed.
 BodyTrack read_body_track(const std::filesystem::path& path, double fps);

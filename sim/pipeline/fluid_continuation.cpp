@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "io/cache_layout.h"
 #include "io/frame_pattern.h"
 #include "io/spume_cache.h"
 #include "io/stage_record.h"
@@ -11,10 +12,6 @@
 
 namespace spume {
 namespace {
-
-std::string restart_pattern(const std::filesystem::path& scene_out) {
-  return (scene_out / "fluid" / "restart_%04d.spr").string();
-}
 
 // The header and the rows of frames 0..last of solver_stats.csv, or "" when they are not all there.
 std::string stats_rows(const std::filesystem::path& path, int last) {
@@ -43,12 +40,6 @@ bool agrees_with_frame(const FluidRestartState& s, const FluidFrame& frame) {
 }
 
 }  // namespace
-
-std::filesystem::path fluid_restart_path(const std::filesystem::path& scene_out, int frame) {
-  char name[32];
-  std::snprintf(name, sizeof name, "restart_%04d.spr", frame);
-  return scene_out / "fluid" / name;
-}
 
 std::string fluid_restart_digest(const SimScene& scene) { return record_digest(scene.fluid_keys); }
 
@@ -94,7 +85,7 @@ std::optional<FluidContinuation> find_fluid_continuation(const SimScene& scene,
 
 void remove_fluid_restarts(const std::filesystem::path& scene_out, int keep) {
   std::error_code ec;
-  for (int f : find_pattern_frames(restart_pattern(scene_out)))
+  for (int f : find_pattern_frames(fluid_restart_pattern(scene_out)))
     if (f != keep) std::filesystem::remove(fluid_restart_path(scene_out, f), ec);
 }
 

@@ -9,6 +9,8 @@
 // is not restorable), and so is a folder whose restart file is missing, corrupt or does not agree
 // with its last frame.
 #include <filesystem>
+
+#include "io/cache_layout.h"  // fluid_restart_path
 #include <optional>
 #include <string>
 
@@ -17,7 +19,6 @@
 
 namespace spume {
 
-std::filesystem::path fluid_restart_path(const std::filesystem::path& scene_out, int frame);
 
 // What the restart state is checked to be made from: the fluid keys (16 hex digits).
 std::string fluid_restart_digest(const SimScene& scene);

@@ -13,16 +13,11 @@
 #include "fluid_continuation.h"
 #include "io/bgeo.h"
 #include "io/frame_pattern.h"
+#include "io/cache_layout.h"
 #include "io/spume_cache.h"
 
 namespace spume {
 namespace {
-
-std::string numbered(const char* prefix, int frame, const char* extension) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%s_%04d%s", prefix, frame, extension);
-  return buffer;
-}
 
 std::string stats_row(int frame, double time, const SolverStats& now, const SolverStats& before, double seconds) {
   const uint64_t steps = now.steps - before.steps;
@@ -35,14 +30,6 @@ std::string stats_row(int frame, double time, const SolverStats& now, const Solv
 }
 
 }  // namespace
-
-std::filesystem::path fluid_cache_path(const std::filesystem::path& scene_out, int frame) {
-  return scene_out / "fluid" / numbered("fluid", frame, ".spf");
-}
-
-std::string fluid_cache_pattern(const std::filesystem::path& scene_out) {
-  return (scene_out / "fluid" / "fluid_%04d.spf").string();
-}
 
 StageRecord fluid_stage_record(const SimScene& scene, int last) {
   StageRecord r;
@@ -153,7 +140,7 @@ FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions
     const FluidFrame frame = solver.frame(f);
     write_fluid_cache(fluid_cache_path(out, f), frame, scene.fluid.particle_radius);
     if (has_bodies) bodies.frames.push_back(solver.body_poses());
-    if (scene.write_fluid_bgeo) write_bgeo(out / "fluid_bgeo" / numbered("fluid", f, ".bgeo"), frame);
+    if (scene.write_fluid_bgeo) write_bgeo(fluid_bgeo_path(out, f), frame);
     const SolverStats now = solver.stats();
     stats += stats_row(f, frame.time, now, before,
                        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());

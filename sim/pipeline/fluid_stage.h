@@ -16,6 +16,7 @@
 #include <optional>
 #include <string>
 
+#include "io/cache_layout.h"
 #include "io/stage_record.h"
 
 #include "scene/sim_scene.h"
@@ -39,9 +40,6 @@ struct FluidStageSummary {
   std::string why;  // when the solver ran: what made the caches stale
 };
 
-std::filesystem::path fluid_cache_path(const std::filesystem::path& scene_out, int frame);
-// The pattern the diffuse stage and the renderer read the solver's frames with.
-std::string fluid_cache_pattern(const std::filesystem::path& scene_out);
 
 // What the stage makes for frames 0..last of the scene (io/stage_record.h).
 StageRecord fluid_stage_record(const SimScene& scene, int last);

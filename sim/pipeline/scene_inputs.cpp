@@ -6,7 +6,7 @@
 #include "io/frame_pattern.h"
 #include "pipeline/fluid_stage.h"
 #include "scene/container.h"
-#include "scene/fluid_source.h"
+#include "io/fluid_source.h"
 
 namespace spume {
 namespace {
@@ -47,7 +47,7 @@ SceneInputs read_scene_inputs(const SimScene& scene, const std::filesystem::path
                                                            scene.frames->second) : std::string());
   std::error_code ec;
   std::filesystem::create_directories(scene_out, ec);
-  in.survey = survey_fluid_files(pattern, frames, scene_out / "fluid_survey.json", quiet);
+  in.survey = survey_fluid_files(pattern, frames, fluid_survey_path(scene_out), quiet);
 
   if (const std::vector<int> missing = missing_frames(frames); !missing.empty() && scene.allow_gaps)
     in.notes.push_back(str("fluid.allow_gaps: ", missing.size(), " missing fluid frame", missing.size() > 1 ? "s" : "",

@@ -14,17 +14,13 @@
 #include "core/progress.h"
 #include "diffuse/simulator.h"
 #include "io/bgeo.h"
+#include "io/cache_layout.h"
 #include "io/spume_cache.h"
 #include "scene/diffuse_params_reader.h"
 
 namespace spume {
 namespace {
 
-std::string frame_name(const char* prefix, int frame, const char* extension) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%s_%04d%s", prefix, frame, extension);
-  return buffer;
-}
 
 }  // namespace
 
@@ -79,10 +75,6 @@ void write_stats_row(std::ostream& out, const FrameStats& s, double time, double
 }
 
 }  // namespace
-
-std::filesystem::path diffuse_cache_path(const std::filesystem::path& scene_out, int frame) {
-  return scene_out / "diffuse" / frame_name("diffuse", frame, ".spd");
-}
 
 namespace {
 
@@ -208,7 +200,7 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
       const auto t0 = std::chrono::steady_clock::now();
       write_diffuse_cache(diffuse_cache_path(summary.out_dir, particles.index), particles);
       if (scene.write_bgeo)
-        write_bgeo(summary.out_dir / "diffuse_bgeo" / frame_name("diffuse", particles.index, ".bgeo"), particles);
+        write_bgeo(diffuse_bgeo_path(summary.out_dir, particles.index), particles);
       io_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       if (stats.dropped > 0 && !warned_budget) {
         progress.message(str("warning: the emission budget diffuse.max_particles = ", *scene.diffuse.max_particles,

@@ -9,9 +9,10 @@
 #include <utility>
 #include <vector>
 
+#include "io/cache_layout.h"
 #include "io/stage_record.h"
 #include "pipeline/scene_inputs.h"
-#include "scene/fluid_source.h"
+#include "io/fluid_source.h"
 #include "scene/sim_scene.h"
 
 namespace spume {
@@ -34,7 +35,6 @@ struct SimulateSummary {
   int continued_from = -1;  // the frame a current shorter run was continued from, if one was
 };
 
-std::filesystem::path diffuse_cache_path(const std::filesystem::path& scene_out, int frame);
 
 // The frames the stage covers: the source's frames within options.frames or else the scene's range.
 std::vector<int> diffuse_frames_to_run(const SimScene& scene, const FluidSource& source,

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "io/fluid_survey.h"
-#include "scene/solids.h"
+#include "geometry/solids.h"
 
 namespace spume {
 

@@ -10,7 +10,7 @@
 #include "core/params.h"
 #include "diffuse/params.h"
 #include "scene/fluid_scene_reader.h"
-#include "scene/solids.h"
+#include "geometry/solids.h"
 
 namespace spume {
 

@@ -1,5 +1,5 @@
 #pragma once
-// Reading a scene's solids (SI units). Defaults: Solid's and Motion's (scene/solids.h), the only ones.
+// Reading a scene's solids (SI units). Defaults: Solid's and Motion's (geometry/solids.h), the only ones.
 //
 //   "solids": [
 //     {"type": "tank", "min": [0, 0, 0], "max": [4, 3, 1], "open_top": true},   // m; hollow box
@@ -20,13 +20,13 @@
 //     {"type": "sphere", ..., "dynamic": {"mass": 2.0}},
 //     {"type": "tank", "infer": true}   // file sources: the walls the fluid presses on (scene/container.h)
 //   ]
-// Motions translate the solid: offset(t) is added to its geometry (scene/solids.h). A tank's "up" is
+// Motions translate the solid: offset(t) is added to its geometry (geometry/solids.h). A tank's "up" is
 // the axis along which gravity is strongest. A "dynamic" box or sphere is a rigid body moved by
 // gravity, the fluid's pressure and viscosity, and contacts (Bullet; fluid/rigid_bodies.h); it cannot
 // also have a motion, and tanks cannot be dynamic. Only the built-in solver (fluid.source "solver")
 // moves dynamic bodies.
 #include "core/params.h"
-#include "scene/solids.h"
+#include "geometry/solids.h"
 
 namespace spume {
 

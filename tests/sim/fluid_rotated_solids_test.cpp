@@ -7,8 +7,8 @@
 
 #include "core/error.h"
 #include "fluid/solver.h"
-#include "scene/solid_coverage.h"
-#include "scene/solids.h"
+#include "geometry/solid_coverage.h"
+#include "geometry/solids.h"
 
 namespace spume {
 namespace {

@@ -5,7 +5,7 @@
 #include <numbers>
 
 #include "core/error.h"
-#include "scene/solids.h"
+#include "geometry/solids.h"
 
 namespace spume {
 namespace {

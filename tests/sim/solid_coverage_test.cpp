@@ -1,4 +1,4 @@
-// The share of a ball inside the union of solids, and the gradient it adds (scene/solid_coverage.h),
+// The share of a ball inside the union of solids, and the gradient it adds (geometry/solid_coverage.h),
 // against closed forms and Monte Carlo estimates that use only SolidSet::inside.
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <random>
 
 #include "diffuse/kernels.h"
-#include "scene/solid_coverage.h"
+#include "geometry/solid_coverage.h"
 
 namespace spume {
 namespace {

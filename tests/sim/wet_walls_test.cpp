@@ -6,7 +6,7 @@
 
 #include "diffuse/potentials.h"
 #include "diffuse/simulator.h"
-#include "scene/solid_coverage.h"
+#include "geometry/solid_coverage.h"
 #include "test_fluids.h"
 
 namespace spume {

@@ -9,7 +9,7 @@
 // ball is integrated along a fixed set of directions with the radial part exact, which measures the
 // union of the solids, never a sum over their faces (that would count an edge twice).
 #include "core/vec.h"
-#include "scene/solids.h"
+#include "geometry/solids.h"
 
 namespace spume {
 

@@ -1,0 +1,26 @@
+#pragma once
+// Where a scene's outputs live under OUT/<scene>/ (`scene_out`), in one place: both the simulation
+// stages that write them and the renderer that reads them link this library.
+//   fluid/fluid_0000.spf      solver scenes: the fluid per frame        fluid/record.json
+//   fluid/restart_0000.spr    the solver's state at the last frame      fluid/bodies.csv
+//   fluid_bgeo/fluid_0000.bgeo, diffuse/diffuse_0000.spd, diffuse_bgeo/diffuse_0000.bgeo, diffuse/record.json
+//   fluid_survey.json         every fluid frame's identity and bounds (io/fluid_survey.h)
+#include <filesystem>
+#include <string>
+
+namespace spume {
+
+// "prefix_0012.ext": every per-frame file name spume writes (4 digits, more when needed).
+std::string numbered_file_name(const std::string& prefix, int frame, const std::string& extension);
+
+std::filesystem::path fluid_cache_path(const std::filesystem::path& scene_out, int frame);
+std::string fluid_cache_pattern(const std::filesystem::path& scene_out);  // for a FluidSource
+std::filesystem::path fluid_bgeo_path(const std::filesystem::path& scene_out, int frame);
+std::filesystem::path fluid_restart_path(const std::filesystem::path& scene_out, int frame);
+std::string fluid_restart_pattern(const std::filesystem::path& scene_out);
+std::filesystem::path body_track_path(const std::filesystem::path& scene_out);
+std::filesystem::path diffuse_cache_path(const std::filesystem::path& scene_out, int frame);
+std::filesystem::path diffuse_bgeo_path(const std::filesystem::path& scene_out, int frame);
+std::filesystem::path fluid_survey_path(const std::filesystem::path& scene_out);
+
+}  // namespace spume
