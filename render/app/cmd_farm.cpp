@@ -15,7 +15,7 @@
 #include "farm/farm_plan.h"
 #include "farm/slurm_script.h"
 #include "pipeline/simulate_scene.h"
-#include "render_stage.h"
+#include "stage/render_stage.h"
 #include "scene_args.h"
 
 namespace spume {
@@ -43,7 +43,7 @@ struct Plan {
 };
 
 // Loads the scene and splits its frames into chunks. Tasks never delete frames: each renders the
-// frames of its chunk whose records do not match (render_stage.h).
+// frames of its chunk whose records do not match (stage/render_stage.h).
 Plan plan(const cli::ParsedArgs& args) {
   // The command line is checked whole before the scene is read.
   const auto chunk = args.value("chunk");

@@ -8,7 +8,8 @@
 #include "core/progress.h"
 #include "image/contact_sheet.h"
 #include "image/png_io.h"
-#include "render_stage.h"
+#include "scene_render.h"
+#include "stage/render_stage.h"
 #include "scene_args.h"
 #include "scene_lock.h"
 
@@ -81,16 +82,17 @@ int lookdev(const cli::ParsedArgs& args) {
     const int tile_width = asked_tile_width.value_or(std::min(full_width, 480));
     setup.render.height = std::max(1, int(std::lround(double(setup.render.height) * tile_width / full_width)));
     setup.render.width = tile_width;
-    PreparedRender prepared = prepare_render(setup.sim, setup.render, setup.out_root);
+    SceneRender scene = scene_render(setup.sim, setup.out_root);
+    PreparedRender prepared = prepare_render(scene.scene, setup.render);
+    const std::vector<int>& frames = scene.scene.frames;
     if (frame < 0) {
-      frame = asked_frame.value_or(prepared.frames.front());
-      if (!std::binary_search(prepared.frames.begin(), prepared.frames.end(), frame))
-        fail("--frame ", frame, ": not a frame of ", setup.sim.name, " (", prepared.frames.front(), "-",
-             prepared.frames.back(), ")");
+      frame = asked_frame.value_or(frames.front());
+      if (!std::binary_search(frames.begin(), frames.end(), frame))
+        fail("--frame ", frame, ": not a frame of ", setup.sim.name, " (", frames.front(), "-", frames.back(), ")");
       output = args.has("output") ? std::filesystem::path(*args.value("output"))
-                                  : prepared.scene_out / "lookdev" / str("lookdev_", frame, ".png");
+                                  : scene.scene.scene_out / "lookdev" / str("lookdev_", frame, ".png");
     }
-    check_diffuse_caches(prepared, {frame});
+    check_diffuse_caches(setup.sim, scene, prepared.settings, {frame});
     const LoadedFrame loaded = load_frame(prepared, frame);
     FrameRenderer renderer(prepared.settings);
     tiles.push_back({renderer.render(loaded.inputs()), combos[c]});

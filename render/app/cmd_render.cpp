@@ -10,7 +10,8 @@
 #include "core/error.h"
 #include "pipeline/simulate_scene.h"
 #include "movie.h"
-#include "render_stage.h"
+#include "scene_render.h"
+#include "stage/render_stage.h"
 #include "scene_args.h"
 #include "scene_lock.h"
 
@@ -25,13 +26,16 @@ std::vector<cli::OptionSpec> render_options() {
   return options;
 }
 
-RenderStageOptions stage_options(const cli::ParsedArgs& args, const SceneSetup& setup) {
+// The render stage over the frames --frames selects, once the caches they need are found current.
+RenderStageSummary render_frames(const cli::ParsedArgs& args, const SceneSetup& setup) {
+  SceneRender scene = scene_render(setup.sim, setup.out_root);
+  PreparedRender prepared = prepare_render(scene.scene, setup.render);
+  const std::vector<int> frames = frames_to_render(scene.scene, args.value("frames"));
+  check_diffuse_caches(setup.sim, scene, prepared.settings, frames);
   RenderStageOptions o;
-  o.out_root = setup.out_root;
   o.quiet = setup.quiet;
   o.overwrite = args.has("overwrite");
-  o.frame_spec = args.value("frames");
-  return o;
+  return run_render_stage(prepared, setup.render_keys, frames, o);
 }
 
 void report(const char* what, bool ran, bool quiet) {
@@ -59,8 +63,7 @@ int render(const cli::ParsedArgs& args) {
   if (auto frames = args.value("frames")) cli::check_frame_spec(*frames, "--frames");
   const SceneSetup setup = load_scene_setup(args);
   const auto lock = lock_scene_output(setup, OutputLock::Mode::Shared, "spume render");
-  finish_render(run_render_stage(setup.sim, setup.render, setup.render_keys, stage_options(args, setup)), args,
-                setup);
+  finish_render(render_frames(args, setup), args, setup);
   return 0;
 }
 
@@ -88,9 +91,7 @@ int run(const cli::ParsedArgs& args) {
       report("fluid solver", !simulated.fluid.reused, false);
     report("diffuse simulation", diffuse && !simulated.diffuse.reused, false);
   }
-  const RenderStageSummary rendered =
-      run_render_stage(setup.sim, setup.render, setup.render_keys, stage_options(args, setup));
-  finish_render(rendered, args, setup);
+  finish_render(render_frames(args, setup), args, setup);
   return 0;
 }
 

@@ -6,7 +6,8 @@
 #include <chrono>
 #include <cmath>
 
-#include "../render_stage.h"
+#include "../scene_render.h"
+#include "stage/render_stage.h"
 #include "convergence_fit.h"
 #include "core/error.h"
 #include "image/image.h"
@@ -50,7 +51,8 @@ StudyResult study_render(const StudyContext& c) {
   SceneSetup setup = load_report_scene(c);
   if (c.quick) setup.render.width /= 2, setup.render.height /= 2;
   if (!setup.render.draws_diffuse()) fail(setup.sim.name, ": the scene draws no diffuse type; nothing to march");
-  PreparedRender prepared = prepare_render(setup.sim, setup.render, setup.out_root);
+  SceneRender scene_render_of_setup = scene_render(setup.sim, setup.out_root);
+  PreparedRender prepared = prepare_render(scene_render_of_setup.scene, setup.render);
   const int frame = busiest_frame(setup);
   const LoadedFrame loaded = load_frame(prepared, frame);
   const RenderSettings& settings = prepared.settings;

@@ -9,16 +9,11 @@
 #include "core/frame_spec.h"
 #include "core/progress.h"
 #include "image/png_io.h"
+#include "io/cache_layout.h"
+#include "io/file_identity.h"
 #include "io/frame_pattern.h"
 #include "io/spume_cache.h"
-#include "pipeline/body_track_file.h"
-#include "io/file_identity.h"
-#include "io/stage_record.h"
-#include "pipeline/frame_renderer.h"
-#include "pipeline/simulate_run.h"
-#include "pipeline/scene_inputs.h"
-#include "pipeline/simulate_scene.h"
-#include "solid_meshes.h"
+#include "stage/solid_meshes.h"
 
 namespace spume {
 namespace {
@@ -28,23 +23,24 @@ constexpr int kRenderGeneration = 1;
 
 // Bounds of what the camera should see when the scene sets no camera: the tanks and the fluid over
 // the whole sequence (a dam break stays in the picture from its first frame to its last).
-Aabb scene_bounds(const SolidSet& solids, const FluidSurvey& survey) {
-  const Aabb fluid = survey.bounds();
+Aabb scene_bounds(const RenderScene& scene) {
+  const Aabb& fluid = scene.fluid_bounds;
   Aabb box = fluid;
-  for (const Solid& s : solids.solids())
+  for (const Solid& s : scene.solids.solids())
     if (s.kind == Solid::Kind::Tank) {
       // A tank far taller than the water would shrink the water to a strip: its height counts only
       // up to where the fluid ever reaches.
       Aabb tank{s.min, s.max};
-      if (!fluid.empty()) tank.max[s.up_axis] = std::max(std::min(s.max[s.up_axis], fluid.max[s.up_axis]), s.min[s.up_axis]);
+      if (!fluid.empty())
+        tank.max[s.up_axis] = std::max(std::min(s.max[s.up_axis], fluid.max[s.up_axis]), s.min[s.up_axis]);
       box.extend(tank);
     }
   return box;
 }
 
-float lowest_point(const SolidSet& solids, const FluidSurvey& survey, int up) {
-  Aabb box = scene_bounds(solids, survey);
-  for (const Solid& s : solids.solids())
+float lowest_point(const RenderScene& scene, int up) {
+  Aabb box = scene_bounds(scene);
+  for (const Solid& s : scene.solids.solids())
     box.extend(s.kind == Solid::Kind::Sphere ? Aabb{s.center - Vec3f::Constant(s.radius),
                                                     s.center + Vec3f::Constant(s.radius)}
                                              : Aabb{s.min, s.max});
@@ -54,61 +50,28 @@ float lowest_point(const SolidSet& solids, const FluidSurvey& survey, int up) {
 
 }  // namespace
 
-PreparedRender prepare_render(const SimScene& scene, RenderSettings settings, const std::filesystem::path& out_root) {
-  const Vec3f up = -scene.gravity.normalized();
-  if (!(up.dot(Vec3f::UnitY()) > 0.999f))
+PreparedRender prepare_render(RenderScene& scene, RenderSettings settings) {
+  if (!(scene.up.dot(Vec3f::UnitY()) > 0.999f))
     fail(scene.name, ": /gravity: the renderer's sky and ground assume +y is up; gravity must point along -y");
+  if (scene.frames.empty()) fail(scene.name, ": no frames to render");
   PreparedRender p;
   p.scene = &scene;
-  p.scene_out = out_root / scene.name;
-  if (scene.source == FluidSourceKind::Solver) {
-    const std::optional<StageRecord> made = read_stage_record(p.scene_out / "fluid");
-    const RecordMatch match = fluid_caches_match(scene, out_root, made ? made->last_frame : 0);
-    if (!made || match.kind != RecordMatch::Kind::Current)
-      fail((p.scene_out / "fluid").string(), ": the fluid caches are not current for this scene (", match.why,
-           "); run `spume simulate` or `spume run` first");
-  }
-  p.source = scene_fluid_source(scene, out_root);
-  p.frames = diffuse_frames_to_run(scene, *p.source, SimulateOptions{});
-  if (settings.draw_solids) p.bodies = scene_body_track(scene, p.scene_out);
-
-  p.inputs = read_scene_inputs(scene, out_root, true);
-  const SceneInputs& inputs = p.inputs;
-  p.solids = inputs.solids;
-  std::vector<int> surveyed;
-  for (const FrameSurvey& f : inputs.survey.frames) surveyed.push_back(f.frame);
-  p.sequence_digest = record_digest(diffuse_stage_record(scene, inputs, surveyed, p.scene_out).to_json());
   if (settings.camera.empty())
-    settings.camera.push_back(auto_camera(scene_bounds(p.solids, inputs.survey), up, 40.0f,
-                                          float(settings.width) / float(settings.height)));
-  settings.camera_up = up;
-  settings.environment.ground_height =
-      settings.ground_height.value_or(lowest_point(p.solids, inputs.survey, 1));
+    settings.camera.push_back(
+        auto_camera(scene_bounds(scene), scene.up, 40.0f, float(settings.width) / float(settings.height)));
+  settings.camera_up = scene.up;
+  settings.environment.ground_height = settings.ground_height.value_or(lowest_point(scene, 1));
   p.settings = std::move(settings);
   return p;
 }
 
-void check_diffuse_caches(const PreparedRender& p, const std::vector<int>& frames) {
-  if (!p.settings.draws_diffuse() || frames.empty()) return;
-  const std::filesystem::path dir = p.scene_out / "diffuse";
-  const std::optional<StageRecord> made = read_stage_record(dir);
-  if (!made)
-    fail(dir.string(), ": no finished diffuse caches (never simulated, or a simulation was interrupted); run "
-         "`spume simulate` or `spume run` first");
-  // The caches may start later than the scene (simulate --frames A-B); they must reach every frame.
-  std::vector<int> range;
-  for (int f : p.frames)
-    if (f >= made->first_frame && f <= frames.back()) range.push_back(f);
-  if (frames.front() < made->first_frame || range.empty())
-    fail(dir.string(), ": the diffuse caches start at frame ", made->first_frame, ", after frame ", frames.front(),
-         "; run `spume simulate` for the frames to render");
-  const RecordMatch match = diffuse_caches_match(*p.scene, p.inputs, range, p.scene_out);
-  if (match.kind == RecordMatch::Kind::Prefix)
-    fail(dir.string(), ": the diffuse caches end at frame ", made->last_frame, ", before frame ", frames.back(),
-         "; run `spume simulate` (or `spume run`) for the frames to render");
-  if (match.kind == RecordMatch::Kind::Stale)
-    fail(dir.string(), ": the diffuse caches are not current for this scene: ", match.why,
-         "; run `spume simulate` (or `spume run`) first");
+std::vector<int> frames_to_render(const RenderScene& scene, const std::optional<std::string>& spec) {
+  const std::vector<int>& available = scene.frames;
+  if (!spec || available.empty()) return available;
+  std::vector<int> frames;
+  for (int f : parse_frame_spec(*spec, available.front(), available.back(), "--frames"))
+    if (std::binary_search(available.begin(), available.end(), f)) frames.push_back(f);
+  return frames;
 }
 
 std::string frame_record(const PreparedRender& p, const nlohmann::json& render_keys, int frame) {
@@ -123,13 +86,13 @@ std::string frame_record(const PreparedRender& p, const nlohmann::json& render_k
     cameras.push_back({k.time, k.position.x(), k.position.y(), k.position.z(), k.target.x(), k.target.y(),
                        k.target.z(), k.fov_y_degrees});
   nlohmann::json record = {{"render", render_keys},
-                           {"sequence", p.sequence_digest},
+                           {"sequence", p.scene->sequence_digest},
                            {"camera", cameras},
                            {"ground_height", p.settings.environment.ground_height},
                            {"renderer", kRenderGeneration}};
-  if (p.settings.draws_diffuse()) record["diffuse"] = identity(diffuse_cache_path(p.scene_out, frame));
+  if (p.settings.draws_diffuse()) record["diffuse"] = identity(diffuse_cache_path(p.scene->scene_out, frame));
   if (p.settings.draw_surface) {
-    const std::filesystem::path fluid = expand_frame_pattern(p.inputs.survey.pattern, frame);
+    const std::filesystem::path fluid = expand_frame_pattern(p.scene->fluid_pattern, frame);
     // A gap filled by interpolation (fluid.allow_gaps) depends on its neighbours, which the sequence
     // digest covers.
     record["fluid"] = std::filesystem::exists(fluid) ? identity(fluid) : nlohmann::json("interpolated");
@@ -151,10 +114,10 @@ LoadedFrame load_frame(PreparedRender& p, int f) {
   return with_context(str("frame ", f), [&] {
     LoadedFrame frame;
     frame.index = f;
-    frame.time = double(f) / p.scene->fluid.fps;
-    if (p.settings.draw_surface) frame.fluid = p.source->load(f);
+    frame.time = double(f) / p.scene->fps;
+    if (p.settings.draw_surface) frame.fluid = p.scene->fluid->load(f);
     if (p.settings.draws_diffuse()) {
-      const auto cache = diffuse_cache_path(p.scene_out, f);
+      const auto cache = diffuse_cache_path(p.scene->scene_out, f);
       if (!std::filesystem::is_regular_file(cache))
         fail(cache.string(), ": no diffuse cache for this frame; run `spume simulate` (or `spume run`) first");
       frame.diffuse = read_diffuse_cache(cache);
@@ -162,28 +125,20 @@ LoadedFrame load_frame(PreparedRender& p, int f) {
     }
     if (p.settings.draw_solids) {
       Camera camera = camera_at(p.settings.camera, frame.time, p.settings.width, p.settings.height);
-      frame.solids = solid_meshes(solids_at_time(p.solids, p.bodies, frame.time), camera.position);
+      frame.solids = solid_meshes(solids_at_time(p.scene->solids, p.scene->bodies, frame.time), camera.position);
     }
     return frame;
   });
 }
 
-RenderStageSummary run_render_stage(const SimScene& scene, RenderSettings settings_in,
-                                    const nlohmann::json& render_keys, const RenderStageOptions& options) {
+RenderStageSummary run_render_stage(PreparedRender& prepared, const nlohmann::json& render_keys,
+                                    const std::vector<int>& frames, const RenderStageOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  PreparedRender prepared = prepare_render(scene, std::move(settings_in), options.out_root);
+  const RenderScene& scene = *prepared.scene;
   const RenderSettings& settings = prepared.settings;
-  const std::string pattern = (prepared.scene_out / settings.frame_pattern).string();
-  const std::vector<int>& available = prepared.frames;
-  std::vector<int> frames = available;
-  if (options.frame_spec) {
-    frames.clear();
-    for (int f : parse_frame_spec(*options.frame_spec, available.front(), available.back(), "--frames"))
-      if (std::binary_search(available.begin(), available.end(), f)) frames.push_back(f);
-  }
+  const std::string pattern = (scene.scene_out / settings.frame_pattern).string();
   RenderStageSummary summary;
   if (frames.empty()) return summary;
-  check_diffuse_caches(prepared, frames);
   const std::filesystem::path frames_dir = std::filesystem::path(expand_frame_pattern(pattern, 0)).parent_path();
 
   FrameRenderer renderer(settings);
@@ -218,12 +173,13 @@ RenderStageSummary run_render_stage(const SimScene& scene, RenderSettings settin
     });
   }
   // Frames of the sequence left out of this render that no longer match the scene.
-  for (int f : available) {
+  for (int f : scene.frames) {
     if (std::binary_search(frames.begin(), frames.end(), f)) continue;
     const std::filesystem::path path = expand_frame_pattern(pattern, f);
     if (!std::filesystem::exists(path)) continue;
-    const bool current = (!settings.draws_diffuse() || std::filesystem::exists(diffuse_cache_path(prepared.scene_out, f))) &&
-                         read_png_record(path) == frame_record(prepared, render_keys, f);
+    const bool current =
+        (!settings.draws_diffuse() || std::filesystem::exists(diffuse_cache_path(scene.scene_out, f))) &&
+        read_png_record(path) == frame_record(prepared, render_keys, f);
     summary.stale_elsewhere += !current;
   }
   const auto per_frame = [&](double seconds) {

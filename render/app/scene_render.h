@@ -1,0 +1,28 @@
+#pragma once
+// From a simulation scene to what the render stage needs (stage/render_scene.h), and the check that
+// the caches it will read are current: the spume command's bridge between the two halves, so that the
+// render stage itself knows nothing of how scenes are simulated.
+#include <filesystem>
+#include <vector>
+
+#include "pipeline/render_settings.h"
+#include "pipeline/scene_inputs.h"
+#include "scene/sim_scene.h"
+#include "stage/render_scene.h"
+
+namespace spume {
+
+struct SceneRender {
+  SceneInputs inputs;  // the survey of the whole sequence, the solids as resolved, the domain
+  RenderScene scene;
+};
+
+// Throws when a solver scene has no current fluid caches (naming why).
+SceneRender scene_render(const SimScene& scene, const std::filesystem::path& out_root);
+
+// Throws unless the diffuse caches (when the settings draw diffuse material) are finished, current
+// for the scene and hold `frames` (sorted), naming the first difference.
+void check_diffuse_caches(const SimScene& scene, const SceneRender& render, const RenderSettings& settings,
+                          const std::vector<int>& frames);
+
+}  // namespace spume
