@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "error.h"
 
@@ -170,6 +171,96 @@ ParamReader ParamReader::child(const std::string& key) const {
   const Json* v = find(key);
   if (v && !v->is_object()) fail_at(key, str("expected an object {...}, found ", v->dump()));
   return ParamReader(doc_, path_of(key));
+}
+
+std::string ParamReader::declared_path() const {
+  std::string out;
+  size_t at = 1;
+  while (at <= path_.size() && !path_.empty()) {
+    const size_t next = std::min(path_.find('/', at), path_.size());
+    const std::string part = path_.substr(at, next - at);
+    if (!part.empty() && part.find_first_not_of("0123456789") == std::string::npos) out += "[]";
+    else out += (out.empty() ? "" : ".") + part;
+    at = next + 1;
+  }
+  return out;
+}
+
+std::string ParamReader::declared_key(const KeySpec& k) const {
+  // A reader at the root may stand for the object alone (a "diffuse" object read on its own).
+  const std::string name = k.name(), here = declared_path();
+  if (!here.empty() && here + "." + name != k.path)
+    throw std::logic_error(str("key ", k.path, " read at ", here.empty() ? "the root" : here));
+  return name;
+}
+
+void ParamReader::check_in_range(const KeySpec& k, const std::string& key, double v) const {
+  const bool low = k.lo_bound == Bound::Closed ? v < k.lo : k.lo_bound == Bound::Open && !(v > k.lo);
+  const bool high = k.hi_bound == Bound::Closed ? v > k.hi : k.hi_bound == Bound::Open && !(v < k.hi);
+  if (low || high) fail_at(key, str("value ", v, " is out of range; allowed ", range_description(k)));
+}
+
+double ParamReader::number(const KeySpec& k, double r, double mass_ratio) const {
+  const std::string key = declared_key(k);
+  const std::optional<double> v = optional_number(key);
+  if (!v) {
+    if (!k.has_value()) fail_at(key, str("missing: ", k.doc, *k.unit ? str(" in ", k.unit) : std::string()));
+    return scaled_default(k, 0, r, mass_ratio);
+  }
+  check_in_range(k, key, *v);
+  return *v;
+}
+
+long ParamReader::integer(const KeySpec& k) const {
+  const std::string key = declared_key(k);
+  const Json* v = find(key);
+  if (!v) {
+    if (!k.has_value()) fail_at(key, str("missing: ", k.doc));
+    return long(k.value[0]);
+  }
+  if (!v->is_number_integer()) fail_at(key, str("expected a whole number, found ", v->dump()));
+  const long i = v->get<long>();
+  check_in_range(k, key, double(i));
+  return i;
+}
+
+bool ParamReader::boolean(const KeySpec& k) const { return boolean(declared_key(k), k.value[0] != 0.0); }
+
+std::string ParamReader::choice(const KeySpec& k) const {
+  std::vector<std::string> allowed;
+  const std::string list = k.choices;
+  for (size_t at = 0; at <= list.size();) {
+    const size_t bar = std::min(list.find('|', at), list.size());
+    allowed.push_back(list.substr(at, bar - at));
+    at = bar + 1;
+  }
+  return choice(declared_key(k), allowed.front(), allowed);
+}
+
+std::optional<Vec3f> ParamReader::optional_vec3(const KeySpec& k) const {
+  const std::string key = declared_key(k);
+  const std::optional<Vec3f> v = optional_vec3(key);
+  if (v)
+    for (int a = 0; a < 3; ++a) check_in_range(k, key, double((*v)[a]));
+  return v;
+}
+
+Vec3f ParamReader::vec3(const KeySpec& k) const {
+  if (const std::optional<Vec3f> v = optional_vec3(k)) return *v;
+  if (!k.has_value()) fail_at(k.name(), str("missing: ", k.doc, " [x, y, z]", *k.unit ? str(" in ", k.unit) : ""));
+  return Vec3f(float(k.value[0]), float(k.value[1]), float(k.value[2]));
+}
+
+std::pair<double, double> ParamReader::range(const KeySpec& k, double r, double mass_ratio) const {
+  const std::string key = declared_key(k);
+  if (!has(key)) {
+    if (!k.has_value()) fail_at(key, str("missing: ", k.doc));
+    return {scaled_default(k, 0, r, mass_ratio), scaled_default(k, 1, r, mass_ratio)};
+  }
+  const auto v = range(key, {0.0, 1.0});
+  check_in_range(k, key, v.first);
+  check_in_range(k, key, v.second);
+  return v;
 }
 
 std::vector<ParamReader> ParamReader::array_of_objects(const std::string& key) const {

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "keys/key_spec.h"
 #include "vec.h"
 
 namespace spume {
@@ -53,6 +54,18 @@ class ParamReader {
   // [min, max] with min < max (MODEL.md §8.1: equal thresholds would divide by zero).
   std::pair<double, double> range(const std::string& key, std::pair<double, double> fallback) const;
 
+  // Declared keys (keys/key_spec.h): the key is the declaration's last path component (which must be
+  // where this reader stands: a mismatch is a bug, thrown as std::logic_error); the default is the
+  // declared one, carried to the particle radius `r` for scaled keys (`mass_ratio`: Scaling::Energy);
+  // the value must lie in the declared range; a key without a default is required.
+  double number(const KeySpec& k, double r = 0.0, double mass_ratio = 1.0) const;
+  long integer(const KeySpec& k) const;
+  bool boolean(const KeySpec& k) const;
+  std::string choice(const KeySpec& k) const;
+  Vec3f vec3(const KeySpec& k) const;
+  std::optional<Vec3f> optional_vec3(const KeySpec& k) const;  // absent: nullopt (range checked if present)
+  std::pair<double, double> range(const KeySpec& k, double r = 0.0, double mass_ratio = 1.0) const;
+
   ParamReader child(const std::string& key) const;           // {} when absent
   std::vector<ParamReader> array_of_objects(const std::string& key) const;
 
@@ -64,11 +77,17 @@ class ParamReader {
   // present unknown key a typo away is suggested ("radus" for a missing "radius").
   [[noreturn]] void fail_at(const std::string& key, const std::string& message) const;
 
+  // This reader's place as a declaration path: "/solids/0/motion" -> "solids[].motion".
+  std::string declared_path() const;
+
   // After every module has read its keys: throws naming every key nobody asked for, with suggestions.
   void reject_unknown_keys() const;
 
  private:
   const Json* find(const std::string& key) const;  // records the lookup
+  // The declaration's key name, checked against this reader's place.
+  std::string declared_key(const KeySpec& k) const;
+  void check_in_range(const KeySpec& k, const std::string& key, double v) const;
   std::string near_miss_hint(const std::string& key) const;
   const Json& object() const;
 

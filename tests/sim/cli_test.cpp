@@ -106,10 +106,11 @@ TEST_F(SpumeCommand, BadParametersAreRejectedNamingKeyValueAndAllowed) {
   const BadScene cases[] = {
       {R"({"tau_ta": [5, 5]})", "/diffuse/tau_ta: min 5 must be below max 5"},
       {R"({"tau_wc": [8, 2]})", "/diffuse/tau_wc: min 8 must be below max 2"},
-      {R"({"k_ta": -3})", "/diffuse/k_ta: value -3 must be >= 0"},
-      {R"({"bubble_drag": "paper", "drag": 1.5})", "/diffuse/drag: value 1.5 is out of range; allowed [0, 1]"},
+      {R"({"k_ta": -3})", "/diffuse/k_ta: value -3 is out of range; allowed [0, 1e+06]"},
+      {R"({"bubble_drag": "paper", "drag": 1.5})",
+       "/diffuse/drag: value 1.5 is out of range for bubble_drag \"paper\"; allowed [0, 1]"},
       {R"({"spray_integrator": "rk4"})", "\"rk4\" is not a choice; allowed: \"exact\", \"euler_cromer\""},
-      {R"({"substeps": 0})", "/diffuse/substeps: value 0 is out of range; allowed 1 to 64"},
+      {R"({"substeps": 0})", "/diffuse/substeps: value 0 is out of range; allowed [1, 64]"},
       {R"({"tau_k": "high"})", "/diffuse/tau_k: expected [min, max]"},
   };
   for (const auto& c : cases) {

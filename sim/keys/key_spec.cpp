@@ -1,0 +1,81 @@
+#include "key_spec.h"
+
+#include <sstream>
+
+namespace spume {
+namespace {
+
+std::string number_text(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+
+std::string values_text(const KeySpec& k) {
+  switch (k.type) {
+    case KeyType::Range: return "[" + number_text(k.value[0]) + ", " + number_text(k.value[1]) + "]";
+    case KeyType::Vec3:
+    case KeyType::Colour:
+      return "[" + number_text(k.value[0]) + ", " + number_text(k.value[1]) + ", " + number_text(k.value[2]) + "]";
+    case KeyType::Boolean: return k.value[0] != 0.0 ? "true" : "false";
+    default: return number_text(k.value[0]);
+  }
+}
+
+}  // namespace
+
+std::string KeySpec::name() const {
+  const std::string p = path;
+  const size_t dot = p.rfind('.');
+  return dot == std::string::npos ? p : p.substr(dot + 1);
+}
+
+double scaled_default(const KeySpec& k, int i, double r, double mass_ratio) {
+  const double v = k.value[size_t(i)], s = r / kDefaultsReferenceRadius;
+  switch (k.scaling) {
+    case Scaling::Absolute: return v;
+    case Scaling::Radius: return v * r;
+    case Scaling::Velocity:
+    case Scaling::Time: return v * std::sqrt(s);
+    case Scaling::Rate: return v / std::sqrt(s);
+    case Scaling::Energy: return v * mass_ratio * s;
+  }
+  return v;
+}
+
+std::string default_description(const KeySpec& k) {
+  if (k.type == KeyType::Text || k.type == KeyType::Choice) {
+    std::string first = k.choices;
+    if (k.type == KeyType::Choice) first = first.substr(0, first.find('|'));
+    if (!first.empty()) return "\"" + first + "\"";
+  }
+  if (!k.has_value()) return k.default_text;
+  std::string text = values_text(k);
+  switch (k.scaling) {
+    case Scaling::Absolute: break;
+    case Scaling::Radius: text += " r"; break;
+    case Scaling::Velocity:
+    case Scaling::Time: text += " at r0, x sqrt(r/r0)"; break;
+    case Scaling::Rate: text += " at r0, / sqrt(r/r0)"; break;
+    case Scaling::Energy: text += " at r0, x mass ratio x r/r0"; break;
+  }
+  if (*k.default_text) text += std::string(" (") + k.default_text + ")";
+  return text;
+}
+
+std::string range_description(const KeySpec& k) {
+  if (k.type == KeyType::Choice) {
+    std::string list = k.choices;
+    for (size_t at = list.find('|'); at != std::string::npos; at = list.find('|')) list.replace(at, 1, ", ");
+    return list;
+  }
+  const bool lo = k.lo_bound != Bound::Unset, hi = k.hi_bound != Bound::Unset;
+  if (lo && hi)
+    return std::string(k.lo_bound == Bound::Open ? "(" : "[") + number_text(k.lo) + ", " + number_text(k.hi) +
+           (k.hi_bound == Bound::Open ? ")" : "]");
+  if (lo) return std::string(k.lo_bound == Bound::Open ? "> " : ">= ") + number_text(k.lo);
+  if (hi) return std::string(k.hi_bound == Bound::Open ? "< " : "<= ") + number_text(k.hi);
+  return "";
+}
+
+}  // namespace spume
