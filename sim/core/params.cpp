@@ -173,6 +173,16 @@ ParamReader ParamReader::child(const std::string& key) const {
   return ParamReader(doc_, path_of(key));
 }
 
+namespace {
+
+// "missing: the fluid particle radius r (...), in m; it is required"
+std::string missing_message(const KeySpec& k) {
+  const char* shape = k.type == KeyType::Vec3 ? " [x, y, z]" : k.type == KeyType::Range ? " [min, max]" : "";
+  return str("missing: ", k.doc, shape, *k.unit ? str(", in ", k.unit) : std::string(), "; it is required");
+}
+
+}  // namespace
+
 std::string ParamReader::declared_path() const {
   std::string out;
   size_t at = 1;
@@ -195,16 +205,14 @@ std::string ParamReader::declared_key(const KeySpec& k) const {
 }
 
 void ParamReader::check_in_range(const KeySpec& k, const std::string& key, double v) const {
-  const bool low = k.lo_bound == Bound::Closed ? v < k.lo : k.lo_bound == Bound::Open && !(v > k.lo);
-  const bool high = k.hi_bound == Bound::Closed ? v > k.hi : k.hi_bound == Bound::Open && !(v < k.hi);
-  if (low || high) fail_at(key, str("value ", v, " is out of range; allowed ", range_description(k)));
+  if (const std::string why = out_of_range(k, v); !why.empty()) fail_at(key, why);
 }
 
 double ParamReader::number(const KeySpec& k, double r, double mass_ratio) const {
   const std::string key = declared_key(k);
   const std::optional<double> v = optional_number(key);
   if (!v) {
-    if (!k.has_value()) fail_at(key, str("missing: ", k.doc, *k.unit ? str(" in ", k.unit) : std::string()));
+    if (!k.has_value()) fail_at(key, missing_message(k));
     return scaled_default(k, 0, r, mass_ratio);
   }
   check_in_range(k, key, *v);
@@ -215,7 +223,7 @@ long ParamReader::integer(const KeySpec& k) const {
   const std::string key = declared_key(k);
   const Json* v = find(key);
   if (!v) {
-    if (!k.has_value()) fail_at(key, str("missing: ", k.doc));
+    if (!k.has_value()) fail_at(key, missing_message(k));
     return long(k.value[0]);
   }
   if (!v->is_number_integer()) fail_at(key, str("expected a whole number, found ", v->dump()));
@@ -247,14 +255,14 @@ std::optional<Vec3f> ParamReader::optional_vec3(const KeySpec& k) const {
 
 Vec3f ParamReader::vec3(const KeySpec& k) const {
   if (const std::optional<Vec3f> v = optional_vec3(k)) return *v;
-  if (!k.has_value()) fail_at(k.name(), str("missing: ", k.doc, " [x, y, z]", *k.unit ? str(" in ", k.unit) : ""));
+  if (!k.has_value()) fail_at(k.name(), missing_message(k));
   return Vec3f(float(k.value[0]), float(k.value[1]), float(k.value[2]));
 }
 
 std::pair<double, double> ParamReader::range(const KeySpec& k, double r, double mass_ratio) const {
   const std::string key = declared_key(k);
   if (!has(key)) {
-    if (!k.has_value()) fail_at(key, str("missing: ", k.doc));
+    if (!k.has_value()) fail_at(key, missing_message(k));
     return {scaled_default(k, 0, r, mass_ratio), scaled_default(k, 1, r, mass_ratio)};
   }
   const auto v = range(key, {0.0, 1.0});

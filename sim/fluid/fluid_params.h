@@ -1,60 +1,66 @@
 #pragma once
 // Parameters, initial fluid and statistics of spume's DFSPH fluid solver. SI units throughout.
-// The defaults below are the only defaults: the scene reader (scene/fluid_scene_reader.cpp) falls
-// back to a default-constructed FluidSolverParams.
+// The keys, defaults and ranges are declared once, in keys/scene_keys.h (fluid.solver.*); the
+// defaults here are those declarations, and validate() checks their ranges.
 #include <array>
 #include <cstdint>
 #include <vector>
 
 #include "core/vec.h"
+#include "keys/scene_keys.h"
 
 namespace spume {
 
+namespace fluid_default {
+constexpr float declared(const KeySpec& k, int i = 0) { return float(k.value[size_t(i)]); }
+}  // namespace fluid_default
+
 struct FluidSolverParams {
   // Particles sit on a lattice of spacing 2r; the cubic spline kernel has support h = 4r.
-  float particle_radius = 0.01f;  // r, m
-  float rest_density = 1000.0f;   // rho0, kg/m^3; particle mass m = rho0 (2r)^3
+  float particle_radius = 0.01f;  // r, m; for callers without a scene (a scene must give fluid.radius)
+  float rest_density = fluid_default::declared(keys::fluid::rest_density);  // rho0, kg/m^3; mass rho0 (2r)^3
   // Kinematic viscosity nu (m^2/s) of the standard SPH Laplacian (forces.h). Water is 1e-6, which
   // leaves the solver's particle-scale noise undamped (a tank at rest keeps ~0.2 m/s rms for seconds,
   // measured); the default damps that noise at r ~ 5-10 mm within a fraction of a second (rate
   // ~10 nu / h^2) while a 1 m wave barely feels it (decay time L^2 / nu ~ 1000 s). Lower it for
   // livelier splashes at fine resolution.
-  float viscosity = 1.0e-3f;
+  float viscosity = fluid_default::declared(keys::solver::viscosity);
   // Same term between fluid and solid particles: friction of the unresolved wall boundary layer,
   // m^2/s. 0 = free-slip walls. With the default, the dam-break surge front follows Martin & Moyce
   // (1952) within ~10%; free-slip walls run ~15-20% ahead (tests/sim/fluid_dam_break_test.cpp).
-  float boundary_viscosity = 1.0e-3f;
+  float boundary_viscosity = fluid_default::declared(keys::solver::boundary_viscosity);
   // XSPH velocity smoothing [Monaghan 1989]: each step moves v_i this fraction of the way towards
   // the kernel average of its neighbours' velocities (dimensionless, 0..1). 0 = off.
-  float xsph = 0.0f;
-  Vec3f gravity = Vec3f(0.0f, -9.81f, 0.0f);  // m/s^2
+  float xsph = fluid_default::declared(keys::solver::xsph);
+  Vec3f gravity = Vec3f(fluid_default::declared(keys::scene::gravity, 0), fluid_default::declared(keys::scene::gravity, 1),
+                        fluid_default::declared(keys::scene::gravity, 2));  // m/s^2
 
   // Time step: dt = cfl * 2r / max speed (fluid and moving solids), also at most h^2 / (32 nu) for
   // the explicit viscosity to stay stable (h = 4r; binds only for large nu), clamped to
   // [min_dt, max_dt].
-  float cfl = 0.4f;
-  double min_dt = 1.0e-5;  // s
-  double max_dt = 5.0e-3;  // s
+  float cfl = fluid_default::declared(keys::solver::cfl);
+  double min_dt = keys::solver::min_dt.value[0];  // s
+  double max_dt = keys::solver::max_dt.value[0];  // s
 
   // Constant-density solve: iterate until the average predicted compression (rho* - rho0) / rho0
   // over all particles (expansion counts as 0) is at most this; 0.0005 = 0.05%.
-  float density_tolerance = 0.0005f;
-  int min_density_iterations = 2;
-  int max_density_iterations = 100;
+  float density_tolerance = fluid_default::declared(keys::solver::density_tolerance);
+  int min_density_iterations = int(keys::solver::min_density_iterations.value[0]);
+  int max_density_iterations = int(keys::solver::max_density_iterations.value[0]);
   // Divergence-free solve: iterate until the average compression rate times dt,
   // mean(max(D rho / Dt, 0)) dt / rho0, is at most this; 0.001 = 0.1% of rho0 per step.
-  bool divergence_solve = true;
-  float divergence_tolerance = 0.001f;
-  int min_divergence_iterations = 1;
-  int max_divergence_iterations = 100;
+  bool divergence_solve = keys::solver::divergence_solve.value[0] != 0.0;
+  float divergence_tolerance = fluid_default::declared(keys::solver::divergence_tolerance);
+  int min_divergence_iterations = int(keys::solver::min_divergence_iterations.value[0]);
+  int max_divergence_iterations = int(keys::solver::max_divergence_iterations.value[0]);
   // Start each solve from half the previous step's pressure (pressure.h explains why it is off).
-  bool warm_start = false;
+  bool warm_start = keys::solver::warm_start.value[0] != 0.0;
 
   // Boundary particles fill the solids to depth h on a lattice of this spacing, in units of r
   // (2 = the fluid's own spacing, which makes a wall read exactly as the missing fluid).
-  float boundary_spacing = 2.0f;
+  float boundary_spacing = fluid_default::declared(keys::solver::boundary_spacing);
   // A fluid particle found inside a solid after a step is put this far (in units of r) outside it.
-  float push_out_skin = 1.0f;
+  float push_out_skin = fluid_default::declared(keys::solver::push_out_skin);
 };
 
 // An initial cuboid of fluid, m. Filled on a lattice of spacing 2r centred in the box, so the

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/vec.h"
+#include "keys/scene_keys.h"
 
 namespace spume {
 
@@ -30,11 +31,12 @@ struct Motion {
   Kind kind = Kind::None;
   std::vector<double> times;   // s, Keyframes
   std::vector<Vec3f> offsets;  // m, Keyframes
-  Vec3f axis = Vec3f::UnitX(); // unit vector, Sine
-  float amplitude = 0.0f;      // m, Sine
-  float frequency = 0.0f;      // Hz, Sine
-  float phase = 0.0f;          // rad, Sine
-  double start = 0.0;          // s, Sine
+  Vec3f axis = Vec3f(float(keys::solids::motion_axis.value[0]), float(keys::solids::motion_axis.value[1]),
+                     float(keys::solids::motion_axis.value[2]));  // unit vector, Sine
+  float amplitude = float(keys::solids::motion_amplitude.value[0]);  // m, Sine
+  float frequency = float(keys::solids::motion_frequency.value[0]);  // Hz, Sine
+  float phase = float(keys::solids::motion_phase.value[0]);  // rad, Sine
+  double start = keys::solids::motion_start.value[0];  // s, Sine
 
   bool moving() const { return kind != Kind::None; }
   Vec3f offset(double t) const;    // m
@@ -48,7 +50,7 @@ struct Dynamics {
   bool enabled = false;
   float density = 0.0f;   // kg/m^3; the mass is density x volume unless `mass` is set
   float mass = 0.0f;      // kg; > 0 overrides density
-  float friction = 0.5f;  // Coulomb coefficient in contacts with other solids (dimensionless)
+  float friction = float(keys::solids::friction.value[0]);  // Coulomb coefficient in contacts with other solids
 };
 
 // Where a dynamic solid is at some time: its centre (box centre, sphere centre), orientation and
@@ -71,7 +73,7 @@ struct Solid {
   Vec3f min = Vec3f::Zero(), max = Vec3f::Zero();  // Tank, Box
   Vec3f center = Vec3f::Zero();                    // Sphere
   float radius = 0.0f;                             // Sphere
-  bool open_top = true;                            // Tank: no wall at max along "up"
+  bool open_top = keys::solids::open_top.value[0] != 0.0;  // Tank: no wall at max along "up"
   int up_axis = 1;                                 // Tank: which axis is up (opposite gravity)
   // Tank: m. Beyond its walls by more than this is the world outside the tank, where spray thrown
   // over the rim falls. Infinite: nothing is outside (every point beyond a wall is in it).

@@ -78,4 +78,11 @@ std::string range_description(const KeySpec& k) {
   return "";
 }
 
+std::string out_of_range(const KeySpec& k, double v) {
+  const bool low = k.lo_bound == Bound::Closed ? !(v >= k.lo) : k.lo_bound == Bound::Open && !(v > k.lo);
+  const bool high = k.hi_bound == Bound::Closed ? !(v <= k.hi) : k.hi_bound == Bound::Open && !(v < k.hi);
+  if (!low && !high && std::isfinite(v)) return "";
+  return "value " + number_text(v) + " is out of range; allowed " + range_description(k);
+}
+
 }  // namespace spume

@@ -64,4 +64,7 @@ double scaled_default(const KeySpec& k, int i, double r, double mass_ratio = 1.0
 std::string default_description(const KeySpec& k);
 std::string range_description(const KeySpec& k);
 
+// "" when v is within the declared range (and finite), else "value V is out of range; allowed R".
+std::string out_of_range(const KeySpec& k, double v);
+
 }  // namespace spume

@@ -27,7 +27,7 @@ inline constexpr KeySpec files{.path = "fluid.files", .type = Text, .default_tex
                                .doc = "particle file pattern (%d, %04d or ####), relative to the scene file"};
 inline constexpr KeySpec radius{.path = "fluid.radius", .unit = "m", .lo = 1e-5, .hi = 10, .lo_bound = Closed,
                                 .hi_bound = Closed, .default_text = "required",
-                                .doc = "particle radius r; the particles' spacing is 2 r"};
+                                .doc = "the fluid particle radius r (the particles' spacing is 2 r)"};
 inline constexpr KeySpec support_radius{.path = "fluid.support_radius", .unit = "m", .value = {4}, .scaling = Radius,
                                         .lo = 0, .hi = 100, .lo_bound = Open, .hi_bound = Closed,
                                         .doc = "influence radius h (the solver uses 4 r)"};
@@ -37,9 +37,9 @@ inline constexpr KeySpec fps{.path = "fluid.fps", .unit = "1/s", .value = {50}, 
 inline constexpr KeySpec rest_density{.path = "fluid.rest_density", .unit = "kg/m^3", .value = {1000}, .lo = 0,
                                       .hi = 1e6, .lo_bound = Open, .hi_bound = Closed,
                                       .doc = "rho0; uniform particle mass rho0 (2r)^3 when files carry none"};
-inline constexpr KeySpec frames{.path = "fluid.frames", .type = Range, .lo = 0, .hi = 1e8, .lo_bound = Closed,
-                                .hi_bound = Closed,
-                                .default_text = "files: every file found; solver: [0, 100] from t = 0",
+inline constexpr KeySpec frames{.path = "fluid.frames", .type = Range, .value = {0, 100}, .lo = 0, .hi = 1e8,
+                                .lo_bound = Closed, .hi_bound = Closed,
+                                .default_text = "solver, from t = 0; files: every file found",
                                 .doc = "[first, last] whole frame numbers to use"};
 inline constexpr KeySpec allow_gaps{.path = "fluid.allow_gaps", .type = Boolean, .value = {0},
                                     .doc = "files: interpolate missing frames between their neighbours (else "

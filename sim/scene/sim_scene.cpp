@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "scene/diffuse_params_reader.h"
+#include "keys/scene_keys.h"
 #include "scene/solids_reader.h"
 
 namespace spume {
@@ -22,45 +23,42 @@ bool is_name_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) |
 
 SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& scene_dir,
                         const std::string& default_name) {
+  namespace k = keys;
   SimScene scene;
-  scene.name = root.text("name", default_name);
+  scene.name = root.text(k::scene::name.name(), default_name);
   if (scene.name.empty() || !std::all_of(scene.name.begin(), scene.name.end(), is_name_char) || scene.name[0] == '.')
     root.fail_at("name", str("\"", scene.name, "\" is not a usable folder name; use letters, digits, _ - ."));
-  scene.gravity = root.vec3("gravity", scene.gravity);
+  scene.gravity = root.vec3(k::scene::gravity);
 
   const ParamReader fluid = root.child("fluid");
-  const std::string source = fluid.choice("source", "files", {"files", "solver"});
-  scene.source = source == "files" ? FluidSourceKind::Files : FluidSourceKind::Solver;
-  if (!fluid.has("radius")) fluid.fail_at("radius", "missing: the fluid particle radius in m is required");
-  scene.fluid.particle_radius = float(fluid.positive("radius", 0.0));
-  scene.fluid.support_radius = float(fluid.positive("support_radius", 4.0 * scene.fluid.particle_radius));
+  scene.source = fluid.choice(k::fluid::source) == "files" ? FluidSourceKind::Files : FluidSourceKind::Solver;
+  scene.fluid.particle_radius = float(fluid.number(k::fluid::radius));
+  const double r = scene.fluid.particle_radius;
+  scene.fluid.support_radius = float(fluid.number(k::fluid::support_radius, r));
   if (scene.fluid.support_radius < scene.fluid.particle_radius)
     fluid.fail_at("support_radius", str("value ", scene.fluid.support_radius, " is below the particle radius ",
                                         scene.fluid.particle_radius, "; the usual choice is 4 x radius"));
-  scene.fluid.fps = fluid.number_in("fps", 50.0, 1e-3, 1e5);
-  scene.fluid.rest_density = float(fluid.positive("rest_density", 1000.0));
+  scene.fluid.fps = fluid.number(k::fluid::fps);
+  scene.fluid.rest_density = float(fluid.number(k::fluid::rest_density));
   if (scene.source == FluidSourceKind::Files) {
-    const auto files = fluid.optional_text("files");
+    const auto files = fluid.optional_text(k::fluid::files.name());
     if (!files) fluid.fail_at("files", "missing: a file pattern such as \"cache/ParticleData_Fluid_%d.bgeo\"");
     const std::filesystem::path pattern(*files);
     scene.file_pattern = pattern.is_absolute() ? pattern.string() : (scene_dir / pattern).lexically_normal().string();
-    scene.allow_gaps = fluid.boolean("allow_gaps", false);
+    scene.allow_gaps = fluid.boolean(k::fluid::allow_gaps);
   }
-  if (scene.source == FluidSourceKind::Solver) {
-    scene.solver = read_fluid_solver(fluid, scene.gravity);
-    scene.frames = std::make_pair(0, kDefaultSolverFrames);
-  }
-  if (fluid.has("frames")) {
-    const auto [a, b] = fluid.range("frames", {0, 1});
-    if (a < 0 || a != std::floor(a) || b != std::floor(b))
-      fluid.fail_at("frames", "expected [first, last] whole frame numbers >= 0");
+  if (scene.source == FluidSourceKind::Solver) scene.solver = read_fluid_solver(fluid, scene.gravity);
+  // Files: every file found unless limited; the solver: the declared range unless given.
+  if (scene.source == FluidSourceKind::Solver || fluid.has(k::fluid::frames.name())) {
+    const auto [a, b] = fluid.range(k::fluid::frames);
+    if (a != std::floor(a) || b != std::floor(b)) fluid.fail_at("frames", "expected [first, last] whole frame numbers");
     scene.frames = std::make_pair(int(a), int(b));
   }
 
-  const ParamReader domain = root.child("domain");
   if (root.has("domain")) {
-    scene.domain.min = domain.vec3("min", Vec3f::Zero());
-    scene.domain.max = domain.vec3("max", Vec3f::Zero());
+    const ParamReader domain = root.child("domain");
+    scene.domain.min = domain.vec3(k::domain::min);
+    scene.domain.max = domain.vec3(k::domain::max);
     if (!(scene.domain.min.array() < scene.domain.max.array()).all())
       root.fail_at("domain", "min must be below max on every axis");
   }
@@ -69,8 +67,8 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
                                                         : read_solids(root, scene.gravity);
   scene.diffuse = read_diffuse_params(root.child("diffuse"), scene.fluid, scene.gravity);
   const ParamReader output = root.child("output");
-  scene.write_bgeo = output.boolean("bgeo", false);
-  scene.write_fluid_bgeo = output.boolean("fluid_bgeo", false);
+  scene.write_bgeo = output.boolean(k::output::bgeo);
+  scene.write_fluid_bgeo = output.boolean(k::output::fluid_bgeo);
   if (scene.write_fluid_bgeo && scene.source != FluidSourceKind::Solver)
     output.fail_at("fluid_bgeo", "only scenes with fluid.source \"solver\" write fluid frames");
 

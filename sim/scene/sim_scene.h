@@ -32,7 +32,7 @@ struct SimScene {
   bool write_fluid_bgeo = false;        // Solver: also write the fluid frames as BGEO
 
   // Solver: the solver's settings and initial fluid. It simulates frames 0..frames->second (always
-  // set for solver scenes: fluid.frames, default [0, kDefaultSolverFrames]).
+  // set for solver scenes: fluid.frames, declared in keys/scene_keys.h).
   FluidSolverSetup solver;
 
   // Every key that shapes the fluid frames (gravity, fluid, solids; not the frame range) and, with
@@ -42,7 +42,6 @@ struct SimScene {
   Json diffuse_keys;
 };
 
-constexpr int kDefaultSolverFrames = 100;
 
 // `scene_dir` resolves relative file paths; `default_name` is used when the scene has no "name".
 SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& scene_dir,

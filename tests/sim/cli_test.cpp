@@ -126,12 +126,13 @@ TEST_F(SpumeCommand, BadParametersAreRejectedNamingKeyValueAndAllowed) {
 
 TEST_F(SpumeCommand, BadFluidSettingsAreRejected) {
   const std::pair<const char*, const char*> cases[] = {
-      {R"({"files": "cache/ParticleData_Fluid_%d.bgeo", "radius": 0})", "/fluid/radius: value 0 must be > 0"},
+      {R"({"files": "cache/ParticleData_Fluid_%d.bgeo", "radius": 0})",
+       "/fluid/radius: value 0 is out of range; allowed [1e-05, 10]"},
       {R"({"files": "cache/ParticleData_Fluid_%d.bgeo", "radius": 0.02, "support_radius": -1})",
-       "/fluid/support_radius: value -1 must be > 0"},
+       "/fluid/support_radius: value -1 is out of range; allowed (0, 100]"},
       // No typo of "radius" beside it: no hint.
       {R"({"files": "cache/ParticleData_Fluid_%d.bgeo"})",
-       "/fluid/radius: missing: the fluid particle radius in m is required\n"},
+       "/fluid/radius: missing: the fluid particle radius r (the particles' spacing is 2 r), in m; it is required\n"},
       {R"({"files": "cache/Nothing_%d.bgeo", "radius": 0.02})", "Nothing_%d.bgeo: no files match"},
   };
   for (const auto& [fluid, expected] : cases) {
@@ -287,7 +288,8 @@ TEST_F(SpumeCommand, MissingKeySuggestsTheNearMissUnknownKey) {
   write_scene(R"({"fluid": {"files": "cache/ParticleData_Fluid_%d.bgeo", "radus": 0.02}})");
   const Result r = run_spume("simulate " + scene() + " --out " + out());
   EXPECT_EQ(r.status, 1);
-  EXPECT_NE(r.output.find("/fluid/radius: missing: the fluid particle radius in m is required (did you mean \"radus\"? "
+  EXPECT_NE(r.output.find("/fluid/radius: missing: the fluid particle radius r (the particles' spacing is 2 r), in m; it is required "
+                      "(did you mean \"radus\"? "
                           "it is not a known key)"),
             std::string::npos)
       << r.output;
