@@ -183,7 +183,10 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
   if (!scene.shows_geometry()) {
     out = render_background(scene.environment, camera);
   } else {
-    if (!gpu_) gpu_ = std::make_unique<Gpu>(options_.gl);
+    if (!gpu_) {
+      gpu_ = std::make_unique<Gpu>(options_.gl);
+      st.seconds_context = lap();
+    }
     Gpu& g = *gpu_;
     g.context.ensure_current();
     st.used_gl = true;
@@ -206,12 +209,13 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
       casters.push_back(c);
       st.triangles += s.mesh->triangle_count();
     }
-    const bool shadows = g.shadow.render(casters, scene.environment.sun_direction);
     if (scene.fluid && !scene.fluid->empty()) {
       g.fluid.upload(*scene.fluid);
       st.triangles += scene.fluid->triangle_count();
     }
-    st.seconds_setup = lap();
+    st.seconds_upload = lap();
+    const bool shadows = g.shadow.render(casters, scene.environment.sun_direction);
+    st.seconds_shadow = lap();
 
     const EnvBlock env = env_block(scene.environment, scene.water);
     shaders::FrameBlock frame{};
@@ -284,6 +288,7 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
       g.back.use();
       glProgramUniform3f(g.back.id(), glGetUniformLocation(g.back.id(), "u_offset"), 0, 0, 0);
       g.fluid.draw();
+      st.seconds_water_back = lap();
       // Pass 3: front faces over a copy of the opaque image.
       g.copy(g.a_colour, g.c_colour), g.copy(g.a_depth, g.c_depth), g.copy(g.a_z, g.c_z);
       g.c.bind();
@@ -299,8 +304,8 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
       g.fluid.draw();
       glDisable(GL_CULL_FACE);
       check_gl("drawing the water");
+      st.seconds_water_front = lap();
     }
-    st.seconds_water = lap();
     // Resolve and pack float bits into RGBA8 planes: llvmpipe reads those back as plain copies, while
     // float targets take a slow conversion path (about 130 ms for 1920x1080 RGBA floats).
     g.p.bind();
@@ -319,6 +324,7 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
     glUniform1i(glGetUniformLocation(g.pack.id(), "u_ss"), ss);
     glBindVertexArray(g.empty_vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    st.seconds_resolve = lap();
     const size_t n = size_t(camera.width) * camera.height;
     g.packed.resize(5 * n);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, g.p.id());

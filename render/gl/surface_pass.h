@@ -57,9 +57,11 @@ struct SurfacePassStats {
   bool used_gl = false;
   size_t triangles = 0;
   double seconds = 0.0;  // all of render()
-  // Stages (GL work finished at each boundary): uploads and shadow map, sky/ground/solids, water,
-  // read-back and down-sampling.
-  double seconds_setup = 0.0, seconds_opaque = 0.0, seconds_water = 0.0, seconds_readback = 0.0;
+  // Stages, GL work finished at each boundary: creating the context and compiling the programs (the
+  // first frame with geometry only), mesh uploads, the sun shadow map, sky/ground/solids, the water's
+  // back faces, its front faces, down-sampling and packing, read-back and unpacking.
+  double seconds_context = 0.0, seconds_upload = 0.0, seconds_shadow = 0.0, seconds_opaque = 0.0;
+  double seconds_water_back = 0.0, seconds_water_front = 0.0, seconds_resolve = 0.0, seconds_readback = 0.0;
 };
 
 class SurfacePass {
