@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "gl_objects.h"
 #include "sun_shadow.h"
 #include "surface/mesh_primitives.h"
@@ -52,25 +53,21 @@ std::pair<float, float> clip_planes(const SurfaceScene& scene, const Camera& cam
   return {near_d, far_d};
 }
 
-// Five RGBA8 planes of float bits (rows bottom-up: r, g, b, depth, opaque depth) -> top-first image
-// and depths.
-void unpack(const std::vector<uint32_t>& planes, int w, int h, SurfaceImage& out) {
+// Read-back buffers (rows bottom-up: RGBA colour, depth, opaque depth) -> top-first image and depths.
+void unpack(const std::vector<float>& rgba, const std::vector<float>& depth, const std::vector<float>& opaque, int w,
+            int h, SurfaceImage& out) {
   out.colour = ImageRGBf(w, h);
   out.depth.resize(size_t(w) * h);
   out.opaque_depth.resize(size_t(w) * h);
-  const size_t n = size_t(w) * h;
-  auto value = [&](int plane, size_t i) {
-    float v;
-    std::memcpy(&v, &planes[size_t(plane) * n + i], sizeof v);
-    return v;
-  };
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const size_t i = size_t(h - 1 - y) * w + x, o = size_t(y) * w + x;
-      out.colour.rgb[o] = Vec3f(value(0, i), value(1, i), value(2, i));
-      out.depth[o] = value(3, i);
-      out.opaque_depth[o] = value(4, i);
-    }
+  parallel_for(size_t(h), 16, [&](size_t y0, size_t y1) {
+    for (size_t y = y0; y < y1; ++y)
+      for (size_t x = 0; x < size_t(w); ++x) {
+        const size_t i = (size_t(h) - 1 - y) * w + x, o = y * w + x;
+        out.colour.rgb[o] = Vec3f(rgba[4 * i], rgba[4 * i + 1], rgba[4 * i + 2]);
+        out.depth[o] = depth[i];
+        out.opaque_depth[o] = opaque[i];
+      }
+  });
 }
 
 }  // namespace
@@ -86,7 +83,7 @@ float ground_extent(const Environment& env) { return 4.0f * env.haze_distance; }
 
 struct SurfacePass::Gpu {
   OsmesaContext context;
-  GlProgram sky, opaque, back, water, pack;
+  GlProgram sky, opaque, back, water, downsample;
   GLuint empty_vao = 0, env_ubo = 0, frame_ubo = 0;
   GpuMesh fluid, ground;
   SunShadow shadow;
@@ -96,9 +93,10 @@ struct SurfacePass::Gpu {
   GlTexture a_colour, a_depth, a_z, b_depth, b_z, c_colour, c_depth, c_z;
   GlFramebuffer a, b, c;
   int out_width = 0, out_height = 0;
-  GlTexture planes[5];
-  GlFramebuffer p;
-  std::vector<uint32_t> packed;
+  // Supersampling only: the down-sampled colour, depth and opaque depth.
+  GlTexture r_colour, r_depth, r_opaque;
+  GlFramebuffer r;
+  std::vector<float> read_colour, read_depth, read_opaque;
 
   explicit Gpu(const OsmesaOptions& options)
       : context(1, 1, options),  // a 1x1 drawable: every pass renders into framebuffer objects
@@ -106,7 +104,7 @@ struct SurfacePass::Gpu {
         opaque(shaders::mesh_vertex(), shaders::opaque_fragment(), "opaque"),
         back(shaders::mesh_vertex(), shaders::depth_fragment(), "water back faces"),
         water(shaders::mesh_vertex(), shaders::water_fragment(), "water"),
-        pack(shaders::sky_vertex(), shaders::pack_fragment(), "pack") {
+        downsample(shaders::sky_vertex(), shaders::downsample_fragment(), "down-sampling") {
     glGenVertexArrays(1, &empty_vao);
     glGenBuffers(1, &env_ubo);
     glGenBuffers(1, &frame_ubo);
@@ -119,13 +117,14 @@ struct SurfacePass::Gpu {
     glDeleteVertexArrays(1, &empty_vao);
   }
 
-  // Targets of w x h (supersampled); the context's buffer holds the packed output of out_w x out_h.
+  // Targets of w x h (supersampled) and, when that differs, the down-sampled out_w x out_h.
   void resize(int w, int h, int out_w, int out_h) {
-    if (out_w != out_width || out_h != out_height) {
+    if ((out_w != out_width || out_h != out_height) && (out_w != w || out_h != h)) {
       out_width = out_w, out_height = out_h;
-      GLuint ids[5];
-      for (int k = 0; k < 5; ++k) planes[k] = GlTexture(GL_RGBA8, out_w, out_h), ids[k] = planes[k].id();
-      p = GlFramebuffer(ids, 0, "packed output");
+      r_colour = GlTexture(GL_RGBA32F, out_w, out_h);
+      r_depth = GlTexture(GL_R32F, out_w, out_h), r_opaque = GlTexture(GL_R32F, out_w, out_h);
+      const GLuint ids[3] = {r_colour.id(), r_depth.id(), r_opaque.id()};
+      r = GlFramebuffer(ids, 0, "down-sampled output");
     }
     if (w == width && h == height) return;
     width = w, height = h;
@@ -242,8 +241,8 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
     glViewport(0, 0, W, H);
     glFrontFace(GL_CCW);
 
-    // Pass 1: ground, solids, then the sky where nothing was drawn (on the far plane, depth-tested:
-    // no pixel is shaded twice).
+    // Pass 1: solids, then the ground, then the sky where nothing was drawn (on the far plane):
+    // front to back, so the depth test rejects hidden fragments before they are shaded.
     Gpu::bind_and_clear(g.a, true);
     glDisable(GL_CULL_FACE);
     glEnable(GL_DEPTH_TEST);
@@ -252,6 +251,14 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
     const GLint offset_loc = glGetUniformLocation(g.opaque.id(), "u_offset");
     const GLint albedo_loc = glGetUniformLocation(g.opaque.id(), "u_albedo");
     const GLint ground_loc = glGetUniformLocation(g.opaque.id(), "u_ground");
+    glUniform1i(ground_loc, 0);
+    for (size_t i = 0; i < scene.solids.size(); ++i) {
+      const SceneSolid& s = scene.solids[i];
+      if (!s.mesh || s.mesh->empty()) continue;
+      glUniform3f(offset_loc, s.offset.x(), s.offset.y(), s.offset.z());
+      glUniform3f(albedo_loc, s.albedo.x(), s.albedo.y(), s.albedo.z());
+      g.solids[i]->draw();
+    }
     const Environment& e = scene.environment;
     if (e.ground && cam.position.y() > e.ground_height) {
       const float ext = ground_extent(e);
@@ -260,14 +267,6 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
       glUniform3f(offset_loc, 0, 0, 0);
       glUniform1i(ground_loc, 1);
       g.ground.draw();
-    }
-    glUniform1i(ground_loc, 0);
-    for (size_t i = 0; i < scene.solids.size(); ++i) {
-      const SceneSolid& s = scene.solids[i];
-      if (!s.mesh || s.mesh->empty()) continue;
-      glUniform3f(offset_loc, s.offset.x(), s.offset.y(), s.offset.z());
-      glUniform3f(albedo_loc, s.albedo.x(), s.albedo.y(), s.albedo.z());
-      g.solids[i]->draw();
     }
     glDepthFunc(GL_LEQUAL);
     glDepthMask(GL_FALSE);
@@ -306,36 +305,45 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
       check_gl("drawing the water");
       st.seconds_water_front = lap();
     }
-    // Resolve and pack float bits into RGBA8 planes: llvmpipe reads those back as plain copies, while
-    // float targets take a slow conversion path (about 130 ms for 1920x1080 RGBA floats).
-    g.p.bind();
-    glViewport(0, 0, camera.width, camera.height);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_DITHER);  // the bytes are float bits, not colours
-    g.pack.use();
-    const GLuint inputs[3] = {water ? g.c_colour.id() : g.a_colour.id(), water ? g.c_depth.id() : g.a_depth.id(),
-                              g.a_depth.id()};
-    for (GLuint unit = 0; unit < 3; ++unit) {
-      glActiveTexture(GL_TEXTURE0 + unit);
-      glBindTexture(GL_TEXTURE_2D, inputs[unit]);
+    // Read the float targets back as they are (llvmpipe copies them; about 5 ms at 1920x1080). With
+    // supersampling, first box-filter them into targets of the output size.
+    GLuint read_fb = water ? g.c.id() : g.a.id(), read_opaque_fb = g.a.id();
+    GLenum colour_att = GL_COLOR_ATTACHMENT0, depth_att = GL_COLOR_ATTACHMENT1, opaque_att = GL_COLOR_ATTACHMENT1;
+    if (ss > 1) {
+      g.r.bind();
+      glViewport(0, 0, camera.width, camera.height);
+      glDisable(GL_DEPTH_TEST);
+      glDisable(GL_CULL_FACE);
+      g.downsample.use();
+      const GLuint inputs[3] = {water ? g.c_colour.id() : g.a_colour.id(), water ? g.c_depth.id() : g.a_depth.id(),
+                                g.a_depth.id()};
+      for (GLuint unit = 0; unit < 3; ++unit) {
+        glActiveTexture(GL_TEXTURE0 + unit);
+        glBindTexture(GL_TEXTURE_2D, inputs[unit]);
+      }
+      glActiveTexture(GL_TEXTURE0);
+      glUniform1i(glGetUniformLocation(g.downsample.id(), "u_ss"), ss);
+      glBindVertexArray(g.empty_vao);
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+      read_fb = read_opaque_fb = g.r.id();
+      depth_att = GL_COLOR_ATTACHMENT1, opaque_att = GL_COLOR_ATTACHMENT2;
     }
-    glActiveTexture(GL_TEXTURE0);
-    glUniform1i(glGetUniformLocation(g.pack.id(), "u_ss"), ss);
-    glBindVertexArray(g.empty_vao);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
     st.seconds_resolve = lap();
-    const size_t n = size_t(camera.width) * camera.height;
-    g.packed.resize(5 * n);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, g.p.id());
+    const int w = camera.width, h = camera.height;
+    const size_t n = size_t(w) * h;
+    g.read_colour.resize(4 * n), g.read_depth.resize(n), g.read_opaque.resize(n);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    for (int k = 0; k < 5; ++k) {
-      glReadBuffer(GLenum(GL_COLOR_ATTACHMENT0 + k));
-      glReadPixels(0, 0, camera.width, camera.height, GL_RGBA, GL_UNSIGNED_BYTE, g.packed.data() + size_t(k) * n);
-    }
+    auto read = [&](GLuint fb, GLenum attachment, GLenum format, float* dst) {
+      glBindFramebuffer(GL_READ_FRAMEBUFFER, fb);
+      glReadBuffer(attachment);
+      glReadPixels(0, 0, w, h, format, GL_FLOAT, dst);
+    };
+    read(read_fb, colour_att, GL_RGBA, g.read_colour.data());
+    read(read_fb, depth_att, GL_RED, g.read_depth.data());
+    read(read_opaque_fb, opaque_att, GL_RED, g.read_opaque.data());
     glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
     check_gl("reading the surface pass back");
-    unpack(g.packed, camera.width, camera.height, out);
+    unpack(g.read_colour, g.read_depth, g.read_opaque, w, h, out);
     st.seconds_readback = lap();
   }
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

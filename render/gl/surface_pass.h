@@ -10,7 +10,7 @@
 //  3. water front faces over a copy of pass 1: Schlick-Fresnel sky reflection, refraction of pass 1's
 //     image absorbed per channel over the path through the water (Beer-Lambert) plus an in-scattered
 //     deep colour, GGX sun highlight (shadowed).
-//  4. down-sample (supersampling) and pack the floats into RGBA8 planes read back as bytes.
+//  4. down-sample (supersampling only) and read the float targets back.
 // Colour is LINEAR RGB (the image writer encodes sRGB). Assumes the camera is above the water and the
 // ground. Water is treated as clear for shadows (no caustics, no shadow cast by water).
 #include <memory>
@@ -59,7 +59,7 @@ struct SurfacePassStats {
   double seconds = 0.0;  // all of render()
   // Stages, GL work finished at each boundary: creating the context and compiling the programs (the
   // first frame with geometry only), mesh uploads, the sun shadow map, sky/ground/solids, the water's
-  // back faces, its front faces, down-sampling and packing, read-back and unpacking.
+  // back faces, its front faces, down-sampling (supersampling only), read-back.
   double seconds_context = 0.0, seconds_upload = 0.0, seconds_shadow = 0.0, seconds_opaque = 0.0;
   double seconds_water_back = 0.0, seconds_water_front = 0.0, seconds_resolve = 0.0, seconds_readback = 0.0;
 };

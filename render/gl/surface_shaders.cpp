@@ -77,15 +77,13 @@ uniform int u_ground;
 layout(location = 0) out vec4 o_colour;
 layout(location = 1) out float o_depth;
 void main() {
-  vec3 c;
-  if (u_ground == 1) {
-    c = env_ground(v_world, eye.xyz, sun_visibility(v_world, vec3(0.0, 1.0, 0.0)));
-  } else {
-    // Two-sided: a tank is seen from inside.
-    vec3 n = normalize(v_normal);
-    if (dot(n, eye.xyz - v_world) < 0.0) n = -n;
-    c = u_albedo * env_irradiance(n, sun_visibility(v_world, n)) / PI;
-  }
+  // llvmpipe runs both sides of a branch: one shadow lookup serves the ground and the solids.
+  bool ground = u_ground == 1;
+  vec3 n = normalize(v_normal);
+  if (dot(n, eye.xyz - v_world) < 0.0) n = -n;  // two-sided: a tank is seen from inside
+  if (ground) n = vec3(0.0, 1.0, 0.0);
+  float visibility = sun_visibility(v_world, n);
+  vec3 c = ground ? env_ground(v_world, eye.xyz, visibility) : u_albedo * env_irradiance(n, visibility) / PI;
   o_colour = vec4(c, 1.0);
   o_depth = v_depth;
 }
@@ -176,18 +174,15 @@ void main() {
 )GLSL";
 }
 
-std::string pack_fragment() {
+std::string downsample_fragment() {
   return std::string(kHeader) + R"GLSL(
 layout(binding = 0) uniform sampler2D u_colour;
 layout(binding = 1) uniform sampler2D u_depth;
 layout(binding = 2) uniform sampler2D u_opaque_depth;
 uniform int u_ss;
-layout(location = 0) out vec4 o_red;
-layout(location = 1) out vec4 o_green;
-layout(location = 2) out vec4 o_blue;
-layout(location = 3) out vec4 o_depth;
-layout(location = 4) out vec4 o_opaque_depth;
-vec4 bytes(float v) { return unpackUnorm4x8(floatBitsToUint(v)); }
+layout(location = 0) out vec4 o_colour;
+layout(location = 1) out float o_depth;
+layout(location = 2) out float o_opaque_depth;
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   vec3 c = vec3(0.0);
@@ -199,12 +194,9 @@ void main() {
       d = min(d, texelFetch(u_depth, t, 0).r);
       od = min(od, texelFetch(u_opaque_depth, t, 0).r);
     }
-  c /= float(u_ss * u_ss);
-  o_red = bytes(c.r);
-  o_green = bytes(c.g);
-  o_blue = bytes(c.b);
-  o_depth = bytes(d);
-  o_opaque_depth = bytes(od);
+  o_colour = vec4(c / float(u_ss * u_ss), 1.0);
+  o_depth = d;
+  o_opaque_depth = od;
 }
 )GLSL";
 }

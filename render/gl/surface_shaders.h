@@ -24,8 +24,8 @@ std::string mesh_vertex();      // world position, normal, view depth; uniform v
 std::string opaque_fragment();  // diffuse solids (u_albedo) or the ground plane (u_ground = 1)
 std::string depth_fragment();   // linear depth only (water back faces)
 std::string water_fragment();   // the water surface; samplers at units 0, 1, 2
-// Box-filters u_ss x u_ss texels of the final targets (colour averaged, depths: the nearest) and
-// writes each of the five floats as its four bytes (exact bits) to five RGBA8 attachments.
-std::string pack_fragment();
+// Supersampling: box-filters u_ss x u_ss texels of the final targets into attachments 0 (colour,
+// averaged), 1 (depth) and 2 (opaque depth; the depths take the nearest).
+std::string downsample_fragment();
 
 }  // namespace spume::shaders
