@@ -83,15 +83,16 @@ float ground_extent(const Environment& env) { return 4.0f * env.haze_distance; }
 
 struct SurfacePass::Gpu {
   OsmesaContext context;
-  GlProgram sky, opaque, back, water, downsample;
+  GlProgram sky, solid, ground, back, water_normal, water, downsample;
   GLuint empty_vao = 0, env_ubo = 0, frame_ubo = 0;
-  GpuMesh fluid, ground;
+  GpuMesh fluid, ground_quad;
   SunShadow shadow;
   std::vector<std::unique_ptr<GpuMesh>> solids;
   int width = 0, height = 0;
-  // Targets: opaque (A), water back faces (B), final (C).
-  GlTexture a_colour, a_depth, a_z, b_depth, b_z, c_colour, c_depth, c_z;
-  GlFramebuffer a, b, c;
+  // Targets: opaque (A), water back faces (B), water front faces' normals (G) and the final image (C),
+  // G and C sharing a depth-stencil buffer whose stencil marks the water's pixels.
+  GlTexture a_colour, a_depth, a_z, b_depth, b_z, g_normal, c_colour, c_depth, c_z;
+  GlFramebuffer a, b, g, c;
   int out_width = 0, out_height = 0;
   // Supersampling only: the down-sampled colour, depth and opaque depth.
   GlTexture r_colour, r_depth, r_opaque;
@@ -101,9 +102,11 @@ struct SurfacePass::Gpu {
   explicit Gpu(const OsmesaOptions& options)
       : context(1, 1, options),  // a 1x1 drawable: every pass renders into framebuffer objects
         sky(shaders::sky_vertex(), shaders::sky_fragment(), "sky"),
-        opaque(shaders::mesh_vertex(), shaders::opaque_fragment(), "opaque"),
+        solid(shaders::mesh_vertex(), shaders::solid_fragment(), "solids"),
+        ground(shaders::mesh_vertex(), shaders::ground_fragment(), "ground"),
         back(shaders::mesh_vertex(), shaders::depth_fragment(), "water back faces"),
-        water(shaders::mesh_vertex(), shaders::water_fragment(), "water"),
+        water_normal(shaders::mesh_vertex(), shaders::water_normal_fragment(), "water normals"),
+        water(shaders::sky_vertex(), shaders::water_fragment(), "water"),
         downsample(shaders::sky_vertex(), shaders::downsample_fragment(), "down-sampling") {
     glGenVertexArrays(1, &empty_vao);
     glGenBuffers(1, &env_ubo);
@@ -130,29 +133,35 @@ struct SurfacePass::Gpu {
     width = w, height = h;
     a_colour = GlTexture(GL_RGBA16F, w, h);
     a_depth = GlTexture(GL_R32F, w, h);
-    a_z = GlTexture(GL_DEPTH_COMPONENT32F, w, h);
+    a_z = GlTexture(GL_DEPTH32F_STENCIL8, w, h);  // the stencil format of c_z, so it copies
     b_depth = GlTexture(GL_R32F, w, h), b_z = GlTexture(GL_DEPTH_COMPONENT32F, w, h);
+    g_normal = GlTexture(GL_RGBA16F, w, h);
     c_colour = GlTexture(GL_RGBA16F, w, h);
     c_depth = GlTexture(GL_R32F, w, h);
-    c_z = GlTexture(GL_DEPTH_COMPONENT32F, w, h);
-    const GLuint ac[] = {a_colour.id(), a_depth.id()}, bc[] = {b_depth.id()}, cc[] = {c_colour.id(), c_depth.id()};
-    a = GlFramebuffer(ac, a_z.id(), "opaque");
+    c_z = GlTexture(GL_DEPTH32F_STENCIL8, w, h);
+    const GLuint ac[] = {a_colour.id(), a_depth.id()}, bc[] = {b_depth.id()}, gc[] = {g_normal.id(), c_depth.id()},
+                 cc[] = {c_colour.id()};
+    a = GlFramebuffer(ac, a_z.id(), "opaque", GL_DEPTH_STENCIL_ATTACHMENT);
     b = GlFramebuffer(bc, b_z.id(), "water back faces");
-    c = GlFramebuffer(cc, c_z.id(), "final");
+    g = GlFramebuffer(gc, c_z.id(), "water normals", GL_DEPTH_STENCIL_ATTACHMENT);
+    c = GlFramebuffer(cc, c_z.id(), "final", GL_DEPTH_STENCIL_ATTACHMENT);
   }
 
-  // Binds f and clears it: colour to black, linear depth to +inf, depth buffer to the far plane.
-  static void bind_and_clear(const GlFramebuffer& f, bool has_colour) {
+  // Binds f and clears it: colour to black, linear depth to +inf, depth buffer to the far plane
+  // (and the stencil to 0 for the opaque target).
+  static void bind_and_clear(const GlFramebuffer& f, bool opaque) {
     const float black[4] = {0, 0, 0, 1}, inf[4] = {kInf, kInf, kInf, kInf}, one = 1.0f;
     f.bind();
     glDepthMask(GL_TRUE);
-    if (has_colour) {
+    if (opaque) {
       glClearBufferfv(GL_COLOR, 0, black);
       glClearBufferfv(GL_COLOR, 1, inf);
+      glStencilMask(0xFF);
+      glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
     } else {
       glClearBufferfv(GL_COLOR, 0, inf);
+      glClearBufferfv(GL_DEPTH, 0, &one);
     }
-    glClearBufferfv(GL_DEPTH, 0, &one);
   }
 
   void copy(const GlTexture& from, const GlTexture& to) const {
@@ -247,11 +256,9 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
     glDisable(GL_CULL_FACE);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
-    g.opaque.use();
-    const GLint offset_loc = glGetUniformLocation(g.opaque.id(), "u_offset");
-    const GLint albedo_loc = glGetUniformLocation(g.opaque.id(), "u_albedo");
-    const GLint ground_loc = glGetUniformLocation(g.opaque.id(), "u_ground");
-    glUniform1i(ground_loc, 0);
+    g.solid.use();
+    const GLint offset_loc = glGetUniformLocation(g.solid.id(), "u_offset");
+    const GLint albedo_loc = glGetUniformLocation(g.solid.id(), "u_albedo");
     for (size_t i = 0; i < scene.solids.size(); ++i) {
       const SceneSolid& s = scene.solids[i];
       if (!s.mesh || s.mesh->empty()) continue;
@@ -262,11 +269,11 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
     const Environment& e = scene.environment;
     if (e.ground && cam.position.y() > e.ground_height) {
       const float ext = ground_extent(e);
-      g.ground.upload(make_quad_mesh(Vec3f(cam.position.x() - ext, e.ground_height, cam.position.z() - ext),
+      g.ground_quad.upload(make_quad_mesh(Vec3f(cam.position.x() - ext, e.ground_height, cam.position.z() - ext),
                                      Vec3f(0, 0, 2 * ext), Vec3f(2 * ext, 0, 0)));
-      glUniform3f(offset_loc, 0, 0, 0);
-      glUniform1i(ground_loc, 1);
-      g.ground.draw();
+      g.ground.use();
+      glUniform3f(glGetUniformLocation(g.ground.id(), "u_offset"), 0, 0, 0);
+      g.ground_quad.draw();
     }
     glDepthFunc(GL_LEQUAL);
     glDepthMask(GL_FALSE);
@@ -288,27 +295,44 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
       glProgramUniform3f(g.back.id(), glGetUniformLocation(g.back.id(), "u_offset"), 0, 0, 0);
       g.fluid.draw();
       st.seconds_water_back = lap();
-      // Pass 3: front faces over a copy of the opaque image.
+      // Pass 3: the front faces' normals and depths over copies of the opaque image and depths; the
+      // stencil marks the pixels they cover.
       g.copy(g.a_colour, g.c_colour), g.copy(g.a_depth, g.c_depth), g.copy(g.a_z, g.c_z);
-      g.c.bind();
+      g.g.bind();
       glCullFace(GL_BACK);
+      glEnable(GL_STENCIL_TEST);
+      glStencilMask(0xFF);
+      glStencilFunc(GL_ALWAYS, 1, 0xFF);
+      glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+      g.water_normal.use();
+      glProgramUniform3f(g.water_normal.id(), glGetUniformLocation(g.water_normal.id(), "u_offset"), 0, 0, 0);
+      g.fluid.draw();
+      // Pass 4: shade each marked pixel once (the stencil test runs before the shader).
+      g.c.bind();
+      glDisable(GL_DEPTH_TEST);
+      glDisable(GL_CULL_FACE);
+      glStencilFunc(GL_EQUAL, 1, 0xFF);
+      glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
       g.water.use();
-      glProgramUniform3f(g.water.id(), glGetUniformLocation(g.water.id(), "u_offset"), 0, 0, 0);
-      const GLuint inputs[3] = {g.a_colour.id(), g.a_depth.id(), g.b_depth.id()};
-      for (GLuint unit = 0; unit < 3; ++unit) {
+      const GLuint inputs[6] = {g.a_colour.id(), g.a_depth.id(), g.b_depth.id(), 0, g.g_normal.id(), g.c_depth.id()};
+      for (GLuint unit = 0; unit < 6; ++unit) {
+        if (unit == 3) continue;  // the sun's shadow map
         glActiveTexture(GL_TEXTURE0 + unit);
         glBindTexture(GL_TEXTURE_2D, inputs[unit]);
       }
       glActiveTexture(GL_TEXTURE0);
-      g.fluid.draw();
+      glBindVertexArray(g.empty_vao);
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+      glDisable(GL_STENCIL_TEST);
+      glEnable(GL_DEPTH_TEST);
       glDisable(GL_CULL_FACE);
       check_gl("drawing the water");
       st.seconds_water_front = lap();
     }
     // Read the float targets back as they are (llvmpipe copies them; about 5 ms at 1920x1080). With
     // supersampling, first box-filter them into targets of the output size.
-    GLuint read_fb = water ? g.c.id() : g.a.id(), read_opaque_fb = g.a.id();
-    GLenum colour_att = GL_COLOR_ATTACHMENT0, depth_att = GL_COLOR_ATTACHMENT1, opaque_att = GL_COLOR_ATTACHMENT1;
+    GLuint colour_fb = water ? g.c.id() : g.a.id(), depth_fb = water ? g.g.id() : g.a.id(), opaque_fb = g.a.id();
+    GLenum depth_att = GL_COLOR_ATTACHMENT1, opaque_att = GL_COLOR_ATTACHMENT1;
     if (ss > 1) {
       g.r.bind();
       glViewport(0, 0, camera.width, camera.height);
@@ -325,7 +349,7 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
       glUniform1i(glGetUniformLocation(g.downsample.id(), "u_ss"), ss);
       glBindVertexArray(g.empty_vao);
       glDrawArrays(GL_TRIANGLES, 0, 3);
-      read_fb = read_opaque_fb = g.r.id();
+      colour_fb = depth_fb = opaque_fb = g.r.id();
       depth_att = GL_COLOR_ATTACHMENT1, opaque_att = GL_COLOR_ATTACHMENT2;
     }
     st.seconds_resolve = lap();
@@ -338,9 +362,9 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
       glReadBuffer(attachment);
       glReadPixels(0, 0, w, h, format, GL_FLOAT, dst);
     };
-    read(read_fb, colour_att, GL_RGBA, g.read_colour.data());
-    read(read_fb, depth_att, GL_RED, g.read_depth.data());
-    read(read_opaque_fb, opaque_att, GL_RED, g.read_opaque.data());
+    read(colour_fb, GL_COLOR_ATTACHMENT0, GL_RGBA, g.read_colour.data());
+    read(depth_fb, depth_att, GL_RED, g.read_depth.data());
+    read(opaque_fb, opaque_att, GL_RED, g.read_opaque.data());
     glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
     check_gl("reading the surface pass back");
     unpack(g.read_colour, g.read_depth, g.read_opaque, w, h, out);

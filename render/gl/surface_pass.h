@@ -5,12 +5,14 @@
 //
 // Passes (float render targets, so C_b keeps full precision and values above 1):
 //  0. sun shadow map of the solids (sun_shadow.h)
-//  1. opaque: ground plane, solids (diffuse, shadowed), analytic sky  -> colour, linear depth
+//  1. opaque: solids (diffuse, shadowed), ground plane, analytic sky  -> colour, linear depth
 //  2. water back faces                                                -> linear depth (where rays leave water)
-//  3. water front faces over a copy of pass 1: Schlick-Fresnel sky reflection, refraction of pass 1's
-//     image absorbed per channel over the path through the water (Beer-Lambert) plus an in-scattered
-//     deep colour, GGX sun highlight (shadowed).
-//  4. down-sample (supersampling only) and read the float targets back.
+//  3. water front faces over a copy of pass 1                         -> normal, linear depth, stencil
+//  4. water shading, once per pixel the stencil marks: Schlick-Fresnel reflection of the sky and, in
+//     screen space, of pass 1's image; refraction of pass 1's image absorbed per channel over the
+//     path through the water (Beer-Lambert) plus an in-scattered deep colour; GGX sun highlight
+//     (shadowed). See water_shader.cpp.
+//  5. down-sample (supersampling only) and read the float targets back.
 // Colour is LINEAR RGB (the image writer encodes sRGB). Assumes the camera is above the water and the
 // ground. Water is treated as clear for shadows (no caustics, no shadow cast by water).
 #include <memory>

@@ -18,12 +18,22 @@ struct FrameBlock {
   float shadow[4];          // x = on, y = shadow-map texel in uv, w = texel in m
 };
 
+// The `#version` line, the `Frame` block and positive_infinity(); then the same plus the `Env` block
+// and sun_visibility() (every fragment shader that shades).
+std::string frame_block_glsl();
+std::string fragment_header();
+
 std::string sky_vertex();       // full-screen triangle, no inputs
 std::string sky_fragment();     // env_sky along the pixel's view ray; depth +inf
 std::string mesh_vertex();      // world position, normal, view depth; uniform vec3 u_offset
-std::string opaque_fragment();  // diffuse solids (u_albedo) or the ground plane (u_ground = 1)
+std::string solid_fragment();   // diffuse solids (u_albedo), two-sided, shadowed
+std::string ground_fragment();  // the ground plane, shadowed
 std::string depth_fragment();   // linear depth only (water back faces)
-std::string water_fragment();   // the water surface; samplers at units 0, 1, 2
+// The water (water_shader.cpp): its front faces' normal and linear depth (attachments 0, 1), then
+// shading, a full-screen pass: samplers at units 0-2 (opaque colour and depth, back-face depth) and
+// 4, 5 (the front faces' normal and depth).
+std::string water_normal_fragment();
+std::string water_fragment();
 // Supersampling: box-filters u_ss x u_ss texels of the final targets into attachments 0 (colour,
 // averaged), 1 (depth) and 2 (opaque depth; the depths take the nearest).
 std::string downsample_fragment();
