@@ -24,7 +24,7 @@ namespace spume {
 namespace {
 
 // Bump when spume's pictures change for the same keys and caches (frames on disk are then stale).
-constexpr int kRenderGeneration = 1;
+constexpr int kRenderGeneration = 2;
 
 // Bounds of what the camera should see when the scene sets no camera: the tanks and the fluid over
 // the whole sequence (a dam break stays in the picture from its first frame to its last).

@@ -44,28 +44,28 @@ vec3 screen(vec4 c) { return vec3(c.xy / c.w * 0.5 + 0.5, c.w); }
 bool on_screen(vec3 s) { return s.z > 0.0 && all(greaterThanEqual(s.xy, vec2(0.0))) && all(lessThan(s.xy, vec2(1.0))); }
 
 // Screen-space reflection of the opaque scene along R from P: steps growing geometrically from `first`
-// to `reach` (m) until a step ends behind the opaque surface by no more than its own change of depth
-// (it crossed that surface rather than passed behind something nearer), then bisection of that step.
-// Returns the colour found and its weight: 0 when the ray leaves the screen or finds nothing, fading
-// out near the screen's edge so reflections do not end at a hard line.
-const int kMarchSteps = 8, kBisections = 4;
+// to `reach` (m) until one ends behind the opaque surface, then bisection of that step. The hit counts
+// when the refined point lies within `thickness` behind that surface: farther, the ray passed behind
+// something nearer (an edge of a solid) rather than meeting it. Returns the colour found and its
+// weight: 0 without a hit or off the screen, fading out near the screen's edge so reflections do not
+// end at a hard line.
+const int kMarchSteps = 8, kBisections = 5;
 vec4 scene_reflection(vec3 P, vec3 R, float first, float reach) {
   // Clip coordinates are linear along the ray: one matrix product for the whole march.
   vec4 c0 = view_proj * vec4(P, 1.0), dc = view_proj * vec4(R, 0.0);
   float growth = pow(reach / first, 1.0 / float(kMarchSteps - 1));
-  float t_in_front = 0.0, t = first, depth_before = c0.w;
-  bool crossed = false;
+  float t_in_front = 0.0, t = first;
+  bool behind = false;
   for (int k = 0; k < kMarchSteps; ++k) {
     vec3 s = screen(c0 + dc * t);
     if (!on_screen(s)) break;
-    float scene = texelFetch(u_behind_depth, texel(s.xy), 0).r;
-    if (s.z >= scene) {
-      crossed = s.z - scene <= abs(s.z - depth_before) + first;
+    if (s.z >= texelFetch(u_behind_depth, texel(s.xy), 0).r) {
+      behind = true;
       break;
     }
-    t_in_front = t, depth_before = s.z, t *= growth;
+    t_in_front = t, t *= growth;
   }
-  if (!crossed) return vec4(0.0);
+  if (!behind) return vec4(0.0);
   float lo = t_in_front, hi = t;
   for (int k = 0; k < kBisections; ++k) {
     float mid = 0.5 * (lo + hi);
@@ -73,6 +73,8 @@ vec4 scene_reflection(vec3 P, vec3 R, float first, float reach) {
     if (s.z >= texelFetch(u_behind_depth, texel(s.xy), 0).r) hi = mid; else lo = mid;
   }
   vec3 s = screen(c0 + dc * hi);
+  float thickness = 0.05 * hi + 2.0 * first;
+  if (s.z - texelFetch(u_behind_depth, texel(s.xy), 0).r > thickness) return vec4(0.0);
   vec2 edge = abs(s.xy * 2.0 - 1.0);
   return vec4(texelFetch(u_behind_colour, texel(s.xy), 0).rgb, 1.0 - smoothstep(0.9, 1.0, max(edge.x, edge.y)));
 }
