@@ -231,7 +231,7 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
     put_matrix(frame.inv_view, view.inverse());
     put_matrix(frame.inv_view_proj, vp.inverse());
     for (int i = 0; i < 3; ++i) frame.eye[i] = cam.position[i];
-    frame.proj[0] = proj(0, 0), frame.proj[1] = proj(1, 1);
+    frame.proj[0] = proj(0, 0), frame.proj[1] = proj(1, 1), frame.proj[2] = near_d, frame.proj[3] = far_d;
     frame.viewport[0] = float(W), frame.viewport[1] = float(H);
     frame.viewport[2] = 1.0f / float(W), frame.viewport[3] = 1.0f / float(H);
     put_matrix(frame.sun_view_proj, g.shadow.view_proj());

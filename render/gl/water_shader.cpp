@@ -43,16 +43,29 @@ vec3 world_at(vec2 uv, float depth) {
 vec3 screen(vec4 c) { return vec3(c.xy / c.w * 0.5 + 0.5, c.w); }
 bool on_screen(vec3 s) { return s.z > 0.0 && all(greaterThanEqual(s.xy, vec2(0.0))) && all(lessThan(s.xy, vec2(1.0))); }
 
+// Where the ray c0 + dc t (clip space) leaves the view frustum (its sides, the near and the far plane).
+float frustum_exit(vec4 c0, vec4 dc) {
+  // Each side is g0 + g1 t >= 0, true at t = 0; the ray leaves it at -g0 / g1 when g1 < 0.
+  vec4 g0 = vec4(c0.w - c0.x, c0.w + c0.x, c0.w - c0.y, c0.w + c0.y);
+  vec4 g1 = vec4(dc.w - dc.x, dc.w + dc.x, dc.w - dc.y, dc.w + dc.y);
+  float t = dc.w > 0.0 ? (proj.w - c0.w) / dc.w : (dc.w < 0.0 ? (proj.z - c0.w) / dc.w : 1e30);
+  for (int i = 0; i < 4; ++i)
+    if (g1[i] < 0.0) t = min(t, -g0[i] / g1[i]);
+  return max(t, 0.0);
+}
+
 // Screen-space reflection of the opaque scene along R from P: steps growing geometrically from `first`
-// to `reach` (m) until one ends behind the opaque surface, then bisection of that step. The hit counts
-// when the refined point lies within `thickness` behind that surface: farther, the ray passed behind
-// something nearer (an edge of a solid) rather than meeting it. Returns the colour found and its
-// weight: 0 without a hit or off the screen, fading out near the screen's edge so reflections do not
-// end at a hard line.
-const int kMarchSteps = 8, kBisections = 5;
-vec4 scene_reflection(vec3 P, vec3 R, float first, float reach) {
+// to where the ray leaves the screen (perspective shrinks distant steps on screen alike), until one
+// ends behind the opaque surface, then bisection of that step. The hit counts when the refined point
+// lies within `thickness` behind that surface: farther, the ray passed behind something nearer (an
+// edge of a solid) rather than meeting it. Returns the colour found and its weight: 0 without a hit
+// or off the screen, fading out near the screen's edge so reflections do not end at a hard line.
+const int kMarchSteps = 10, kBisections = 5;
+vec4 scene_reflection(vec3 P, vec3 R, float first) {
   // Clip coordinates are linear along the ray: one matrix product for the whole march.
   vec4 c0 = view_proj * vec4(P, 1.0), dc = view_proj * vec4(R, 0.0);
+  float reach = frustum_exit(c0, dc);
+  if (reach <= first) return vec4(0.0);
   float growth = pow(reach / first, 1.0 / float(kMarchSteps - 1));
   float t_in_front = 0.0, t = first;
   bool behind = false;
@@ -122,7 +135,7 @@ void main() {
   vec3 reflected = env_sky(R, false);
   if (water_params.y > 0.5) {
     float footprint = 2.0 * depth / (proj.y * viewport.y);  // m covered by a pixel at this depth
-    vec4 hit = scene_reflection(P, R, 2.0 * footprint, 2.0 * length(eye.xyz - P));
+    vec4 hit = scene_reflection(P, R, 2.0 * footprint);
     reflected = mix(reflected, hit.rgb, hit.a);
   }
 
