@@ -98,11 +98,9 @@ void main() {
 )GLSL";
 }
 
-std::string depth_fragment() {
+std::string depth_only_fragment() {
   return frame_block_glsl() + R"GLSL(
-in float v_depth;
-layout(location = 0) out float o_depth;
-void main() { o_depth = v_depth; }
+void main() {}
 )GLSL";
 }
 

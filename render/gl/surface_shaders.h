@@ -28,7 +28,7 @@ std::string sky_fragment();     // env_sky along the pixel's view ray; depth +in
 std::string mesh_vertex();      // world position, normal, view depth; uniform vec3 u_offset
 std::string solid_fragment();   // diffuse solids (u_albedo), two-sided, shadowed
 std::string ground_fragment();  // the ground plane, shadowed
-std::string depth_fragment();   // linear depth only (water back faces)
+std::string depth_only_fragment();  // nothing but the depth buffer (water back faces)
 // The water (water_shader.cpp): its front faces' normal and linear depth (attachments 0, 1), then
 // shading, a full-screen pass: samplers at units 0-2 (opaque colour and depth, back-face depth) and
 // 4, 5 (the front faces' normal and depth).

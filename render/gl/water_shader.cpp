@@ -16,7 +16,7 @@ in float v_depth;
 layout(location = 0) out vec4 o_normal;
 layout(location = 1) out float o_depth;
 void main() {
-  o_normal = vec4(normalize(v_normal), 0.0);
+  o_normal = vec4(normalize(v_normal) * 0.5 + 0.5, 0.0);  // unsigned 10-bit target
   o_depth = v_depth;
 }
 )GLSL";
@@ -27,14 +27,22 @@ std::string water_fragment() {
 in vec2 v_ndc;
 layout(binding = 0) uniform sampler2D u_behind_colour;  // opaque scene and sky, linear RGB
 layout(binding = 1) uniform sampler2D u_behind_depth;   // its linear depth
-layout(binding = 2) uniform sampler2D u_back_depth;     // linear depth of the water's back faces
+layout(binding = 2) uniform sampler2D u_back_z;         // window depth of the water's back faces
 layout(binding = 4) uniform sampler2D u_water_normal;   // the nearest front face's normal
 layout(binding = 5) uniform sampler2D u_water_depth;    // and its linear depth
 layout(location = 0) out vec4 o_colour;
 
 ivec2 texel(vec2 uv) { return clamp(ivec2(uv * viewport.xy), ivec2(0), ivec2(viewport.xy) - 1); }
 // Where the view ray through this texel leaves the water: its back face or the opaque scene.
-float exit_depth(ivec2 t) { return min(texelFetch(u_behind_depth, t, 0).r, texelFetch(u_back_depth, t, 0).r); }
+// Linear depth (m) from window depth d of the perspective projection (proj.z, proj.w: near, far); the
+// far plane, where nothing was drawn, is infinitely far.
+float linear_depth(float d) {
+  float n = proj.z, f = proj.w;
+  return d >= 1.0 ? positive_infinity() : 2.0 * n * f / (f + n - (2.0 * d - 1.0) * (f - n));
+}
+float exit_depth(ivec2 t) {
+  return min(texelFetch(u_behind_depth, t, 0).r, linear_depth(texelFetch(u_back_z, t, 0).r));
+}
 vec3 world_at(vec2 uv, float depth) {
   vec2 ndc = uv * 2.0 - 1.0;
   return (inv_view * vec4(ndc.x / proj.x * depth, ndc.y / proj.y * depth, -depth, 1.0)).xyz;
@@ -98,7 +106,7 @@ void main() {
   float depth = texelFetch(u_water_depth, pixel, 0).r;
   vec3 P = world_at(uv, depth);
   vec3 V = normalize(eye.xyz - P);
-  vec3 N = normalize(texelFetch(u_water_normal, pixel, 0).xyz);
+  vec3 N = normalize(texelFetch(u_water_normal, pixel, 0).xyz * 2.0 - 1.0);
   // Smooth normals can face away near silhouettes: bend them back just enough.
   float ndv_raw = dot(N, V);
   if (ndv_raw < 0.02) N = normalize(N + (0.02 - ndv_raw) * V);
