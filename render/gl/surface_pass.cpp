@@ -55,18 +55,6 @@ std::pair<float, float> clip_planes(const SurfaceScene& scene, const Camera& cam
 
 static_assert(sizeof(Vec3f) == 3 * sizeof(float), "colour rows are read as packed RGB floats");
 
-// Reverses the row order of the image and both depth arrays (GL reads rows bottom-up).
-void flip_rows(SurfaceImage& image, int w, int h) {
-  parallel_for(size_t(h / 2), 16, [&](size_t y0, size_t y1) {
-    for (size_t y = y0; y < y1; ++y) {
-      const size_t a = y * w, b = (size_t(h) - 1 - y) * w;
-      std::swap_ranges(image.colour.rgb.begin() + a, image.colour.rgb.begin() + a + w, image.colour.rgb.begin() + b);
-      std::swap_ranges(image.depth.begin() + a, image.depth.begin() + a + w, image.depth.begin() + b);
-      std::swap_ranges(image.opaque_depth.begin() + a, image.opaque_depth.begin() + a + w, image.opaque_depth.begin() + b);
-    }
-  });
-}
-
 }  // namespace
 
 bool SurfaceScene::shows_geometry() const {
@@ -80,7 +68,8 @@ float ground_extent(const Environment& env) { return 4.0f * env.haze_distance; }
 
 struct SurfacePass::Gpu {
   OsmesaContext context;
-  GlProgram sky, solid, ground, back, water_normal, water, downsample;
+  GlProgram sky, solid, ground, back, water_normal, water;
+  std::unique_ptr<GlProgram> downsample;  // compiled on the first supersampled frame
   GLuint empty_vao = 0, env_ubo = 0, frame_ubo = 0;
   GpuMesh fluid, ground_quad;
   SunShadow shadow;
@@ -102,8 +91,7 @@ struct SurfacePass::Gpu {
         ground(shaders::mesh_vertex(), shaders::ground_fragment(), "ground"),
         back(shaders::mesh_vertex(), shaders::depth_only_fragment(), "water back faces"),
         water_normal(shaders::mesh_vertex(), shaders::water_normal_fragment(), "water normals"),
-        water(shaders::sky_vertex(), shaders::water_fragment(), "water"),
-        downsample(shaders::sky_vertex(), shaders::downsample_fragment(), "down-sampling") {
+        water(shaders::sky_vertex(), shaders::water_fragment(), "water") {
     glGenVertexArrays(1, &empty_vao);
     glGenBuffers(1, &env_ubo);
     glGenBuffers(1, &frame_ubo);
@@ -200,7 +188,11 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
     Camera cam = camera;
     cam.width = W, cam.height = H;
     const auto [near_d, far_d] = clip_planes(scene, camera);
-    const Eigen::Matrix4f view = cam.view_matrix(), proj = cam.projection_matrix(near_d, far_d), vp = proj * view;
+    // Drawn upside down (y negated in clip space, so the winding flips too): GL's bottom-up rows then
+    // read back in the image's top-first order.
+    Eigen::Matrix4f proj = cam.projection_matrix(near_d, far_d);
+    proj.row(1) *= -1.0f;
+    const Eigen::Matrix4f view = cam.view_matrix(), vp = proj * view;
 
     // Solids to the GPU, then their shadow map.
     while (g.solids.size() < scene.solids.size()) g.solids.push_back(std::make_unique<GpuMesh>());
@@ -245,7 +237,7 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
     glBindTexture(GL_TEXTURE_2D, g.shadow.texture());
     glActiveTexture(GL_TEXTURE0);
     glViewport(0, 0, W, H);
-    glFrontFace(GL_CCW);
+    glFrontFace(GL_CW);
 
     // Pass 1: solids, then the ground, then the sky where nothing was drawn (on the far plane):
     // front to back, so the depth test rejects hidden fragments before they are shaded.
@@ -335,7 +327,9 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
       glViewport(0, 0, camera.width, camera.height);
       glDisable(GL_DEPTH_TEST);
       glDisable(GL_CULL_FACE);
-      g.downsample.use();
+      if (!g.downsample)
+        g.downsample = std::make_unique<GlProgram>(shaders::sky_vertex(), shaders::downsample_fragment(), "down-sampling");
+      g.downsample->use();
       const GLuint inputs[3] = {water ? g.c_colour.id() : g.a_colour.id(), water ? g.c_depth.id() : g.a_depth.id(),
                                 g.a_depth.id()};
       for (GLuint unit = 0; unit < 3; ++unit) {
@@ -343,14 +337,14 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
         glBindTexture(GL_TEXTURE_2D, inputs[unit]);
       }
       glActiveTexture(GL_TEXTURE0);
-      glUniform1i(glGetUniformLocation(g.downsample.id(), "u_ss"), ss);
+      glUniform1i(glGetUniformLocation(g.downsample->id(), "u_ss"), ss);
       glBindVertexArray(g.empty_vao);
       glDrawArrays(GL_TRIANGLES, 0, 3);
       colour_fb = depth_fb = opaque_fb = g.r.id();
       depth_att = GL_COLOR_ATTACHMENT1, opaque_att = GL_COLOR_ATTACHMENT2;
     }
     st.seconds_resolve = lap();
-    // Straight into the output's arrays (GL rows run bottom-up), then flipped in place.
+    // Straight into the output's arrays.
     const int w = camera.width, h = camera.height;
     out.colour = ImageRGBf(w, h);
     out.depth.resize(size_t(w) * h);
@@ -366,7 +360,6 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
     read(opaque_fb, opaque_att, GL_RED, out.opaque_depth.data());
     glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
     check_gl("reading the surface pass back");
-    flip_rows(out, w, h);
     st.seconds_readback = lap();
   }
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -12,7 +12,7 @@ struct FrameBlock {
   float inv_view[16];       // view -> world
   float inv_view_proj[16];  // clip -> world
   float eye[4];             // camera position, m
-  float proj[4];            // x = P00, y = P11 (for view rays from NDC); z, w = near and far planes, m
+  float proj[4];            // x = P00, y = P11 (negative: drawn upside down); z, w = near and far planes, m
   float viewport[4];        // x, y = size in pixels; z, w = reciprocals
   float sun_view_proj[16];  // world -> sun shadow clip space
   float shadow[4];          // x = on, y = shadow-map texel in uv, w = texel in m

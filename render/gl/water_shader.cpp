@@ -142,7 +142,7 @@ void main() {
   vec3 R = reflect(-V, N);
   vec3 reflected = env_sky(R, false);
   if (water_params.y > 0.5) {
-    float footprint = 2.0 * depth / (proj.y * viewport.y);  // m covered by a pixel at this depth
+    float footprint = 2.0 * depth / (abs(proj.y) * viewport.y);  // m covered by a pixel at this depth
     vec4 hit = scene_reflection(P, R, 2.0 * footprint);
     reflected = mix(reflected, hit.rgb, hit.a);
   }
