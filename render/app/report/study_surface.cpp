@@ -132,7 +132,7 @@ StudyResult study_surface(const StudyContext& c) {
   Panel error{"Mesh vertices against the analytic surface", "marching-cubes cell (units of r)",
               "|vertex distance| to the analytic surface (units of r)", true, true, false, {}, 2};
   Panel time{"Reconstruction time", "marching-cubes cell (units of r)", "ms per reconstruction", true, true, false, {}, 2};
-  Panel smooth{"Smoothing at cell 1 r", "Taubin iterations", "mean |distance| (units of r); median normal error (deg / 10)",
+  Panel smooth{"Smoothing at cell 1 r", "Taubin iterations", "mean |distance| (r); median normal error (deg / 10)",
                false, false, false, {}, 10};
   std::string reading;
   // Does refining below the default still move the mean distance, by 30% and by more than 0.02 r?
