@@ -259,7 +259,7 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
     if (e.ground && cam.position.y() > e.ground_height) {
       const float ext = ground_extent(e);
       g.ground_quad.upload(make_quad_mesh(Vec3f(cam.position.x() - ext, e.ground_height, cam.position.z() - ext),
-                                     Vec3f(0, 0, 2 * ext), Vec3f(2 * ext, 0, 0)));
+                                          Vec3f(0, 0, 2 * ext), Vec3f(2 * ext, 0, 0)));
       g.ground.use();
       glUniform3f(glGetUniformLocation(g.ground.id(), "u_offset"), 0, 0, 0);
       g.ground_quad.draw();

@@ -6,7 +6,7 @@
 // Passes (float render targets, so C_b keeps full precision and values above 1):
 //  0. sun shadow map of the solids (sun_shadow.h)
 //  1. opaque: solids (diffuse, shadowed), ground plane, analytic sky  -> colour, linear depth
-//  2. water back faces                                                -> linear depth (where rays leave water)
+//  2. water back faces                                                -> depth buffer (where rays leave water)
 //  3. water front faces over a copy of pass 1                         -> normal, linear depth, stencil
 //  4. water shading, once per pixel the stencil marks: Schlick-Fresnel reflection of the sky and, in
 //     screen space, of pass 1's image; refraction of pass 1's image absorbed per channel over the

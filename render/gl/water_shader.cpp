@@ -33,13 +33,13 @@ layout(binding = 5) uniform sampler2D u_water_depth;    // and its linear depth
 layout(location = 0) out vec4 o_colour;
 
 ivec2 texel(vec2 uv) { return clamp(ivec2(uv * viewport.xy), ivec2(0), ivec2(viewport.xy) - 1); }
-// Where the view ray through this texel leaves the water: its back face or the opaque scene.
 // Linear depth (m) from window depth d of the perspective projection (proj.z, proj.w: near, far); the
 // far plane, where nothing was drawn, is infinitely far.
 float linear_depth(float d) {
   float n = proj.z, f = proj.w;
   return d >= 1.0 ? positive_infinity() : 2.0 * n * f / (f + n - (2.0 * d - 1.0) * (f - n));
 }
+// Where the view ray through this texel leaves the water: its back face or the opaque scene.
 float exit_depth(ivec2 t) {
   return min(texelFetch(u_behind_depth, t, 0).r, linear_depth(texelFetch(u_back_z, t, 0).r));
 }
