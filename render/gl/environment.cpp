@@ -68,7 +68,7 @@ layout(std140, binding = 0) uniform Env {
   vec4 env_params;     // x = haze distance (m), y = ground drawn, z = sun disc solid-angle factor
   vec4 water_abs;      // rgb 1/m; w = ior
   vec4 water_deep;     // rgb; w = GGX alpha
-  vec4 water_params;   // x = refraction strength
+  vec4 water_params;   // x = refraction strength, y = scene reflections on
 };
 const float PI = 3.14159265;
 
@@ -122,7 +122,7 @@ EnvBlock env_block(const Environment& e, const WaterLook& w) {
       Vec3f(e.haze_distance, e.ground ? 1.0f : 0.0f, 1.0f / (kPi * e.sun_angular_radius * e.sun_angular_radius)), 0);
   put(b.water_abs, w.absorption, w.ior);
   put(b.water_deep, w.deep_color, w.roughness);
-  put(b.water, Vec3f(w.refraction, 0, 0), 0);
+  put(b.water, Vec3f(w.refraction, w.scene_reflections ? 1.0f : 0.0f, 0), 0);
   return b;
 }
 

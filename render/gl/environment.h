@@ -38,6 +38,7 @@ struct WaterLook {
   Vec3f deep_color = Vec3f(0.012f, 0.055f, 0.075f);    // radiance of water seen through an infinite depth
   float roughness = 0.04f;                             // GGX alpha of the sun's highlight
   float refraction = 1.0f;                             // 0: straight-through view of the bottom; 1: physical bend
+  bool scene_reflections = true;                       // reflect the ground and solids (screen space); false: sky only
 };
 
 // The GLSL (450) declarations of the environment: a uniform block `Env` at binding 0 and the

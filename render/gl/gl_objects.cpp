@@ -75,7 +75,7 @@ GlTexture& GlTexture::operator=(GlTexture&& o) noexcept {
   return *this;
 }
 
-GlFramebuffer::GlFramebuffer(std::span<const GLuint> colours, GLuint depth, const char* name) {
+GlFramebuffer::GlFramebuffer(std::span<const GLuint> colours, GLuint depth, const char* name, GLenum depth_attachment) {
   glGenFramebuffers(1, &id_);
   glBindFramebuffer(GL_FRAMEBUFFER, id_);
   std::vector<GLenum> draw;
@@ -83,7 +83,7 @@ GlFramebuffer::GlFramebuffer(std::span<const GLuint> colours, GLuint depth, cons
     glFramebufferTexture2D(GL_FRAMEBUFFER, GLenum(GL_COLOR_ATTACHMENT0 + i), GL_TEXTURE_2D, colours[i], 0);
     draw.push_back(GLenum(GL_COLOR_ATTACHMENT0 + i));
   }
-  if (depth) glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth, 0);
+  if (depth) glFramebufferTexture2D(GL_FRAMEBUFFER, depth_attachment, GL_TEXTURE_2D, depth, 0);
   glDrawBuffers(GLsizei(draw.size()), draw.data());
   const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);

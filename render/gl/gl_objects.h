@@ -41,11 +41,13 @@ class GlTexture {
   GLuint id_ = 0;
 };
 
-// A framebuffer over textures: colour attachments 0..n-1 (all drawn) and an optional depth texture.
+// A framebuffer over textures: colour attachments 0..n-1 (all drawn) and an optional depth texture
+// (a depth-stencil one with `depth_attachment` GL_DEPTH_STENCIL_ATTACHMENT).
 class GlFramebuffer {
  public:
   GlFramebuffer() = default;
-  GlFramebuffer(std::span<const GLuint> colours, GLuint depth, const char* name);
+  GlFramebuffer(std::span<const GLuint> colours, GLuint depth, const char* name,
+                GLenum depth_attachment = GL_DEPTH_ATTACHMENT);
   ~GlFramebuffer();
   GlFramebuffer(GlFramebuffer&& o) noexcept : id_(o.id_) { o.id_ = 0; }
   GlFramebuffer& operator=(GlFramebuffer&& o) noexcept;

@@ -1,6 +1,6 @@
 #pragma once
 // Sun shadows: a depth map of the solids seen along the sun direction (orthographic, fitted to the
-// solids), sampled with 4 bilinear comparison taps (PCF) by the opaque and water shaders. Only solids cast shadows:
+// solids), filtered by one bilinear comparison tap (PCF) by the opaque and water shaders. Only solids cast shadows:
 // the water is treated as clear (no caustics, no shadow).
 #include <Eigen/Core>
 #include <vector>

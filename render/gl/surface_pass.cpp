@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "gl_objects.h"
 #include "sun_shadow.h"
 #include "surface/mesh_primitives.h"
@@ -52,26 +53,7 @@ std::pair<float, float> clip_planes(const SurfaceScene& scene, const Camera& cam
   return {near_d, far_d};
 }
 
-// Five RGBA8 planes of float bits (rows bottom-up: r, g, b, depth, opaque depth) -> top-first image
-// and depths.
-void unpack(const std::vector<uint32_t>& planes, int w, int h, SurfaceImage& out) {
-  out.colour = ImageRGBf(w, h);
-  out.depth.resize(size_t(w) * h);
-  out.opaque_depth.resize(size_t(w) * h);
-  const size_t n = size_t(w) * h;
-  auto value = [&](int plane, size_t i) {
-    float v;
-    std::memcpy(&v, &planes[size_t(plane) * n + i], sizeof v);
-    return v;
-  };
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const size_t i = size_t(h - 1 - y) * w + x, o = size_t(y) * w + x;
-      out.colour.rgb[o] = Vec3f(value(0, i), value(1, i), value(2, i));
-      out.depth[o] = value(3, i);
-      out.opaque_depth[o] = value(4, i);
-    }
-}
+static_assert(sizeof(Vec3f) == 3 * sizeof(float), "colour rows are read as packed RGB floats");
 
 }  // namespace
 
@@ -86,27 +68,30 @@ float ground_extent(const Environment& env) { return 4.0f * env.haze_distance; }
 
 struct SurfacePass::Gpu {
   OsmesaContext context;
-  GlProgram sky, opaque, back, water, pack;
+  GlProgram sky, solid, ground, back, water_normal, water;
+  std::unique_ptr<GlProgram> downsample;  // compiled on the first supersampled frame
   GLuint empty_vao = 0, env_ubo = 0, frame_ubo = 0;
-  GpuMesh fluid, ground;
+  GpuMesh fluid, ground_quad;
   SunShadow shadow;
   std::vector<std::unique_ptr<GpuMesh>> solids;
   int width = 0, height = 0;
-  // Targets: opaque (A), water back faces (B), final (C).
-  GlTexture a_colour, a_depth, a_z, b_depth, b_z, c_colour, c_depth, c_z;
-  GlFramebuffer a, b, c;
+  // Targets: opaque (A), water back faces (B), water front faces' normals (G) and the final image (C),
+  // G and C sharing a depth-stencil buffer whose stencil marks the water's pixels.
+  GlTexture a_colour, a_depth, a_z, b_z, g_normal, c_colour, c_depth, c_z;
+  GlFramebuffer a, b, g, c;
   int out_width = 0, out_height = 0;
-  GlTexture planes[5];
-  GlFramebuffer p;
-  std::vector<uint32_t> packed;
+  // Supersampling only: the down-sampled colour, depth and opaque depth.
+  GlTexture r_colour, r_depth, r_opaque;
+  GlFramebuffer r;
 
   explicit Gpu(const OsmesaOptions& options)
       : context(1, 1, options),  // a 1x1 drawable: every pass renders into framebuffer objects
         sky(shaders::sky_vertex(), shaders::sky_fragment(), "sky"),
-        opaque(shaders::mesh_vertex(), shaders::opaque_fragment(), "opaque"),
-        back(shaders::mesh_vertex(), shaders::depth_fragment(), "water back faces"),
-        water(shaders::mesh_vertex(), shaders::water_fragment(), "water"),
-        pack(shaders::sky_vertex(), shaders::pack_fragment(), "pack") {
+        solid(shaders::mesh_vertex(), shaders::solid_fragment(), "solids"),
+        ground(shaders::mesh_vertex(), shaders::ground_fragment(), "ground"),
+        back(shaders::mesh_vertex(), shaders::depth_only_fragment(), "water back faces"),
+        water_normal(shaders::mesh_vertex(), shaders::water_normal_fragment(), "water normals"),
+        water(shaders::sky_vertex(), shaders::water_fragment(), "water") {
     glGenVertexArrays(1, &empty_vao);
     glGenBuffers(1, &env_ubo);
     glGenBuffers(1, &frame_ubo);
@@ -119,41 +104,49 @@ struct SurfacePass::Gpu {
     glDeleteVertexArrays(1, &empty_vao);
   }
 
-  // Targets of w x h (supersampled); the context's buffer holds the packed output of out_w x out_h.
+  // Targets of w x h (supersampled) and, when that differs, the down-sampled out_w x out_h.
   void resize(int w, int h, int out_w, int out_h) {
-    if (out_w != out_width || out_h != out_height) {
+    if ((out_w != out_width || out_h != out_height) && (out_w != w || out_h != h)) {
       out_width = out_w, out_height = out_h;
-      GLuint ids[5];
-      for (int k = 0; k < 5; ++k) planes[k] = GlTexture(GL_RGBA8, out_w, out_h), ids[k] = planes[k].id();
-      p = GlFramebuffer(ids, 0, "packed output");
+      r_colour = GlTexture(GL_RGBA32F, out_w, out_h);
+      r_depth = GlTexture(GL_R32F, out_w, out_h), r_opaque = GlTexture(GL_R32F, out_w, out_h);
+      const GLuint ids[3] = {r_colour.id(), r_depth.id(), r_opaque.id()};
+      r = GlFramebuffer(ids, 0, "down-sampled output");
     }
     if (w == width && h == height) return;
     width = w, height = h;
     a_colour = GlTexture(GL_RGBA16F, w, h);
     a_depth = GlTexture(GL_R32F, w, h);
-    a_z = GlTexture(GL_DEPTH_COMPONENT32F, w, h);
-    b_depth = GlTexture(GL_R32F, w, h), b_z = GlTexture(GL_DEPTH_COMPONENT32F, w, h);
+    // Every byte of the targets is allocated and cleared on the first frame (about 4 ms per 8 MB at
+    // 1920x1080): 4-byte depth-stencil (24-bit depth is as fine as a 32-bit float's over the [0.5, 1)
+    // of window depth where the scenes lie) and 10-bit normals.
+    a_z = GlTexture(GL_DEPTH24_STENCIL8, w, h);  // the format of c_z, so it copies
+    b_z = GlTexture(GL_DEPTH_COMPONENT32F, w, h);
+    g_normal = GlTexture(GL_RGB10_A2, w, h);
     c_colour = GlTexture(GL_RGBA16F, w, h);
     c_depth = GlTexture(GL_R32F, w, h);
-    c_z = GlTexture(GL_DEPTH_COMPONENT32F, w, h);
-    const GLuint ac[] = {a_colour.id(), a_depth.id()}, bc[] = {b_depth.id()}, cc[] = {c_colour.id(), c_depth.id()};
-    a = GlFramebuffer(ac, a_z.id(), "opaque");
-    b = GlFramebuffer(bc, b_z.id(), "water back faces");
-    c = GlFramebuffer(cc, c_z.id(), "final");
+    c_z = GlTexture(GL_DEPTH24_STENCIL8, w, h);
+    const GLuint ac[] = {a_colour.id(), a_depth.id()}, gc[] = {g_normal.id(), c_depth.id()}, cc[] = {c_colour.id()};
+    a = GlFramebuffer(ac, a_z.id(), "opaque", GL_DEPTH_STENCIL_ATTACHMENT);
+    b = GlFramebuffer({}, b_z.id(), "water back faces");
+    g = GlFramebuffer(gc, c_z.id(), "water normals", GL_DEPTH_STENCIL_ATTACHMENT);
+    c = GlFramebuffer(cc, c_z.id(), "final", GL_DEPTH_STENCIL_ATTACHMENT);
   }
 
-  // Binds f and clears it: colour to black, linear depth to +inf, depth buffer to the far plane.
-  static void bind_and_clear(const GlFramebuffer& f, bool has_colour) {
+  // Binds f and clears it: colour to black, linear depth to +inf, depth buffer to the far plane
+  // and the stencil to 0 (the opaque target), or only the depth buffer (the back faces' target).
+  static void bind_and_clear(const GlFramebuffer& f, bool opaque) {
     const float black[4] = {0, 0, 0, 1}, inf[4] = {kInf, kInf, kInf, kInf}, one = 1.0f;
     f.bind();
     glDepthMask(GL_TRUE);
-    if (has_colour) {
+    if (opaque) {
       glClearBufferfv(GL_COLOR, 0, black);
       glClearBufferfv(GL_COLOR, 1, inf);
+      glStencilMask(0xFF);
+      glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
     } else {
-      glClearBufferfv(GL_COLOR, 0, inf);
+      glClearBufferfv(GL_DEPTH, 0, &one);
     }
-    glClearBufferfv(GL_DEPTH, 0, &one);
   }
 
   void copy(const GlTexture& from, const GlTexture& to) const {
@@ -183,7 +176,10 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
   if (!scene.shows_geometry()) {
     out = render_background(scene.environment, camera);
   } else {
-    if (!gpu_) gpu_ = std::make_unique<Gpu>(options_.gl);
+    if (!gpu_) {
+      gpu_ = std::make_unique<Gpu>(options_.gl);
+      st.seconds_context = lap();
+    }
     Gpu& g = *gpu_;
     g.context.ensure_current();
     st.used_gl = true;
@@ -192,7 +188,11 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
     Camera cam = camera;
     cam.width = W, cam.height = H;
     const auto [near_d, far_d] = clip_planes(scene, camera);
-    const Eigen::Matrix4f view = cam.view_matrix(), proj = cam.projection_matrix(near_d, far_d), vp = proj * view;
+    // Drawn upside down (y negated in clip space, so the winding flips too): GL's bottom-up rows then
+    // read back in the image's top-first order.
+    Eigen::Matrix4f proj = cam.projection_matrix(near_d, far_d);
+    proj.row(1) *= -1.0f;
+    const Eigen::Matrix4f view = cam.view_matrix(), vp = proj * view;
 
     // Solids to the GPU, then their shadow map.
     while (g.solids.size() < scene.solids.size()) g.solids.push_back(std::make_unique<GpuMesh>());
@@ -206,12 +206,13 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
       casters.push_back(c);
       st.triangles += s.mesh->triangle_count();
     }
-    const bool shadows = g.shadow.render(casters, scene.environment.sun_direction);
     if (scene.fluid && !scene.fluid->empty()) {
       g.fluid.upload(*scene.fluid);
       st.triangles += scene.fluid->triangle_count();
     }
-    st.seconds_setup = lap();
+    st.seconds_upload = lap();
+    const bool shadows = g.shadow.render(casters, scene.environment.sun_direction);
+    st.seconds_shadow = lap();
 
     const EnvBlock env = env_block(scene.environment, scene.water);
     shaders::FrameBlock frame{};
@@ -219,7 +220,7 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
     put_matrix(frame.inv_view, view.inverse());
     put_matrix(frame.inv_view_proj, vp.inverse());
     for (int i = 0; i < 3; ++i) frame.eye[i] = cam.position[i];
-    frame.proj[0] = proj(0, 0), frame.proj[1] = proj(1, 1);
+    frame.proj[0] = proj(0, 0), frame.proj[1] = proj(1, 1), frame.proj[2] = near_d, frame.proj[3] = far_d;
     frame.viewport[0] = float(W), frame.viewport[1] = float(H);
     frame.viewport[2] = 1.0f / float(W), frame.viewport[3] = 1.0f / float(H);
     put_matrix(frame.sun_view_proj, g.shadow.view_proj());
@@ -236,34 +237,32 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
     glBindTexture(GL_TEXTURE_2D, g.shadow.texture());
     glActiveTexture(GL_TEXTURE0);
     glViewport(0, 0, W, H);
-    glFrontFace(GL_CCW);
+    glFrontFace(GL_CW);
 
-    // Pass 1: ground, solids, then the sky where nothing was drawn (on the far plane, depth-tested:
-    // no pixel is shaded twice).
+    // Pass 1: solids, then the ground, then the sky where nothing was drawn (on the far plane):
+    // front to back, so the depth test rejects hidden fragments before they are shaded.
     Gpu::bind_and_clear(g.a, true);
     glDisable(GL_CULL_FACE);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
-    g.opaque.use();
-    const GLint offset_loc = glGetUniformLocation(g.opaque.id(), "u_offset");
-    const GLint albedo_loc = glGetUniformLocation(g.opaque.id(), "u_albedo");
-    const GLint ground_loc = glGetUniformLocation(g.opaque.id(), "u_ground");
-    const Environment& e = scene.environment;
-    if (e.ground && cam.position.y() > e.ground_height) {
-      const float ext = ground_extent(e);
-      g.ground.upload(make_quad_mesh(Vec3f(cam.position.x() - ext, e.ground_height, cam.position.z() - ext),
-                                     Vec3f(0, 0, 2 * ext), Vec3f(2 * ext, 0, 0)));
-      glUniform3f(offset_loc, 0, 0, 0);
-      glUniform1i(ground_loc, 1);
-      g.ground.draw();
-    }
-    glUniform1i(ground_loc, 0);
+    g.solid.use();
+    const GLint offset_loc = glGetUniformLocation(g.solid.id(), "u_offset");
+    const GLint albedo_loc = glGetUniformLocation(g.solid.id(), "u_albedo");
     for (size_t i = 0; i < scene.solids.size(); ++i) {
       const SceneSolid& s = scene.solids[i];
       if (!s.mesh || s.mesh->empty()) continue;
       glUniform3f(offset_loc, s.offset.x(), s.offset.y(), s.offset.z());
       glUniform3f(albedo_loc, s.albedo.x(), s.albedo.y(), s.albedo.z());
       g.solids[i]->draw();
+    }
+    const Environment& e = scene.environment;
+    if (e.ground && cam.position.y() > e.ground_height) {
+      const float ext = ground_extent(e);
+      g.ground_quad.upload(make_quad_mesh(Vec3f(cam.position.x() - ext, e.ground_height, cam.position.z() - ext),
+                                          Vec3f(0, 0, 2 * ext), Vec3f(2 * ext, 0, 0)));
+      g.ground.use();
+      glUniform3f(glGetUniformLocation(g.ground.id(), "u_offset"), 0, 0, 0);
+      g.ground_quad.draw();
     }
     glDepthFunc(GL_LEQUAL);
     glDepthMask(GL_FALSE);
@@ -284,52 +283,83 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
       g.back.use();
       glProgramUniform3f(g.back.id(), glGetUniformLocation(g.back.id(), "u_offset"), 0, 0, 0);
       g.fluid.draw();
-      // Pass 3: front faces over a copy of the opaque image.
+      st.seconds_water_back = lap();
+      // Pass 3: the front faces' normals and depths over copies of the opaque image and depths; the
+      // stencil marks the pixels they cover.
       g.copy(g.a_colour, g.c_colour), g.copy(g.a_depth, g.c_depth), g.copy(g.a_z, g.c_z);
-      g.c.bind();
+      g.g.bind();
       glCullFace(GL_BACK);
+      glEnable(GL_STENCIL_TEST);
+      glStencilMask(0xFF);
+      glStencilFunc(GL_ALWAYS, 1, 0xFF);
+      glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+      g.water_normal.use();
+      glProgramUniform3f(g.water_normal.id(), glGetUniformLocation(g.water_normal.id(), "u_offset"), 0, 0, 0);
+      g.fluid.draw();
+      // Pass 4: shade each marked pixel once (the stencil test runs before the shader).
+      g.c.bind();
+      glDisable(GL_DEPTH_TEST);
+      glDisable(GL_CULL_FACE);
+      glStencilFunc(GL_EQUAL, 1, 0xFF);
+      glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
       g.water.use();
-      glProgramUniform3f(g.water.id(), glGetUniformLocation(g.water.id(), "u_offset"), 0, 0, 0);
-      const GLuint inputs[3] = {g.a_colour.id(), g.a_depth.id(), g.b_depth.id()};
+      const GLuint inputs[6] = {g.a_colour.id(), g.a_depth.id(), g.b_z.id(), 0, g.g_normal.id(), g.c_depth.id()};
+      for (GLuint unit = 0; unit < 6; ++unit) {
+        if (unit == 3) continue;  // the sun's shadow map
+        glActiveTexture(GL_TEXTURE0 + unit);
+        glBindTexture(GL_TEXTURE_2D, inputs[unit]);
+      }
+      glActiveTexture(GL_TEXTURE0);
+      glBindVertexArray(g.empty_vao);
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+      glDisable(GL_STENCIL_TEST);
+      glEnable(GL_DEPTH_TEST);
+      glDisable(GL_CULL_FACE);
+      check_gl("drawing the water");
+      st.seconds_water_front = lap();
+    }
+    // Read the float targets back as they are (llvmpipe copies them; about 5 ms at 1920x1080). With
+    // supersampling, first box-filter them into targets of the output size.
+    GLuint colour_fb = water ? g.c.id() : g.a.id(), depth_fb = water ? g.g.id() : g.a.id(), opaque_fb = g.a.id();
+    GLenum depth_att = GL_COLOR_ATTACHMENT1, opaque_att = GL_COLOR_ATTACHMENT1;
+    if (ss > 1) {
+      g.r.bind();
+      glViewport(0, 0, camera.width, camera.height);
+      glDisable(GL_DEPTH_TEST);
+      glDisable(GL_CULL_FACE);
+      if (!g.downsample)
+        g.downsample = std::make_unique<GlProgram>(shaders::sky_vertex(), shaders::downsample_fragment(), "down-sampling");
+      g.downsample->use();
+      const GLuint inputs[3] = {water ? g.c_colour.id() : g.a_colour.id(), water ? g.c_depth.id() : g.a_depth.id(),
+                                g.a_depth.id()};
       for (GLuint unit = 0; unit < 3; ++unit) {
         glActiveTexture(GL_TEXTURE0 + unit);
         glBindTexture(GL_TEXTURE_2D, inputs[unit]);
       }
       glActiveTexture(GL_TEXTURE0);
-      g.fluid.draw();
-      glDisable(GL_CULL_FACE);
-      check_gl("drawing the water");
+      glUniform1i(glGetUniformLocation(g.downsample->id(), "u_ss"), ss);
+      glBindVertexArray(g.empty_vao);
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+      colour_fb = depth_fb = opaque_fb = g.r.id();
+      depth_att = GL_COLOR_ATTACHMENT1, opaque_att = GL_COLOR_ATTACHMENT2;
     }
-    st.seconds_water = lap();
-    // Resolve and pack float bits into RGBA8 planes: llvmpipe reads those back as plain copies, while
-    // float targets take a slow conversion path (about 130 ms for 1920x1080 RGBA floats).
-    g.p.bind();
-    glViewport(0, 0, camera.width, camera.height);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_DITHER);  // the bytes are float bits, not colours
-    g.pack.use();
-    const GLuint inputs[3] = {water ? g.c_colour.id() : g.a_colour.id(), water ? g.c_depth.id() : g.a_depth.id(),
-                              g.a_depth.id()};
-    for (GLuint unit = 0; unit < 3; ++unit) {
-      glActiveTexture(GL_TEXTURE0 + unit);
-      glBindTexture(GL_TEXTURE_2D, inputs[unit]);
-    }
-    glActiveTexture(GL_TEXTURE0);
-    glUniform1i(glGetUniformLocation(g.pack.id(), "u_ss"), ss);
-    glBindVertexArray(g.empty_vao);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    const size_t n = size_t(camera.width) * camera.height;
-    g.packed.resize(5 * n);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, g.p.id());
+    st.seconds_resolve = lap();
+    // Straight into the output's arrays.
+    const int w = camera.width, h = camera.height;
+    out.colour = ImageRGBf(w, h);
+    out.depth.resize(size_t(w) * h);
+    out.opaque_depth.resize(size_t(w) * h);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    for (int k = 0; k < 5; ++k) {
-      glReadBuffer(GLenum(GL_COLOR_ATTACHMENT0 + k));
-      glReadPixels(0, 0, camera.width, camera.height, GL_RGBA, GL_UNSIGNED_BYTE, g.packed.data() + size_t(k) * n);
-    }
+    auto read = [&](GLuint fb, GLenum attachment, GLenum format, float* dst) {
+      glBindFramebuffer(GL_READ_FRAMEBUFFER, fb);
+      glReadBuffer(attachment);
+      glReadPixels(0, 0, w, h, format, GL_FLOAT, dst);
+    };
+    read(colour_fb, GL_COLOR_ATTACHMENT0, GL_RGB, out.colour.rgb.front().data());
+    read(depth_fb, depth_att, GL_RED, out.depth.data());
+    read(opaque_fb, opaque_att, GL_RED, out.opaque_depth.data());
     glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
     check_gl("reading the surface pass back");
-    unpack(g.packed, camera.width, camera.height, out);
     st.seconds_readback = lap();
   }
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

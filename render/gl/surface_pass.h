@@ -5,12 +5,14 @@
 //
 // Passes (float render targets, so C_b keeps full precision and values above 1):
 //  0. sun shadow map of the solids (sun_shadow.h)
-//  1. opaque: ground plane, solids (diffuse, shadowed), analytic sky  -> colour, linear depth
-//  2. water back faces                                                -> linear depth (where rays leave water)
-//  3. water front faces over a copy of pass 1: Schlick-Fresnel sky reflection, refraction of pass 1's
-//     image absorbed per channel over the path through the water (Beer-Lambert) plus an in-scattered
-//     deep colour, GGX sun highlight (shadowed).
-//  4. down-sample (supersampling) and pack the floats into RGBA8 planes read back as bytes.
+//  1. opaque: solids (diffuse, shadowed), ground plane, analytic sky  -> colour, linear depth
+//  2. water back faces                                                -> depth buffer (where rays leave water)
+//  3. water front faces over a copy of pass 1                         -> normal, linear depth, stencil
+//  4. water shading, once per pixel the stencil marks: Schlick-Fresnel reflection of the sky and, in
+//     screen space, of pass 1's image; refraction of pass 1's image absorbed per channel over the
+//     path through the water (Beer-Lambert) plus an in-scattered deep colour; GGX sun highlight
+//     (shadowed). See water_shader.cpp.
+//  5. down-sample (supersampling only) and read the float targets back.
 // Colour is LINEAR RGB (the image writer encodes sRGB). Assumes the camera is above the water and the
 // ground. Water is treated as clear for shadows (no caustics, no shadow cast by water).
 #include <memory>
@@ -48,7 +50,7 @@ struct SurfaceImage {
 
 struct SurfacePassOptions {
   // Render at this factor per axis and box-filter down (anti-aliasing; depths take the nearest sample).
-  // 1 by default: 2 costs 3-4x the time on llvmpipe (1920x1080: about 0.4 s at 1, 1.4-2 s at 2).
+  // 1 by default: 2 costs 2.5-3x the time on llvmpipe (960x540, wave frames 48-52: 0.09 s at 1, 0.24 s at 2).
   int supersample = 1;
   OsmesaOptions gl;
 };
@@ -57,9 +59,11 @@ struct SurfacePassStats {
   bool used_gl = false;
   size_t triangles = 0;
   double seconds = 0.0;  // all of render()
-  // Stages (GL work finished at each boundary): uploads and shadow map, sky/ground/solids, water,
-  // read-back and down-sampling.
-  double seconds_setup = 0.0, seconds_opaque = 0.0, seconds_water = 0.0, seconds_readback = 0.0;
+  // Stages, GL work finished at each boundary: creating the context and compiling the programs (the
+  // first frame with geometry only), mesh uploads, the sun shadow map, sky/ground/solids, the water's
+  // back faces, its front faces, down-sampling (supersampling only), read-back.
+  double seconds_context = 0.0, seconds_upload = 0.0, seconds_shadow = 0.0, seconds_opaque = 0.0;
+  double seconds_water_back = 0.0, seconds_water_front = 0.0, seconds_resolve = 0.0, seconds_readback = 0.0;
 };
 
 class SurfacePass {

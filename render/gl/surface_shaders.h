@@ -12,20 +12,30 @@ struct FrameBlock {
   float inv_view[16];       // view -> world
   float inv_view_proj[16];  // clip -> world
   float eye[4];             // camera position, m
-  float proj[4];            // x = P00, y = P11 (for view rays from NDC)
+  float proj[4];            // x = P00, y = P11 (negative: drawn upside down); z, w = near and far planes, m
   float viewport[4];        // x, y = size in pixels; z, w = reciprocals
   float sun_view_proj[16];  // world -> sun shadow clip space
   float shadow[4];          // x = on, y = shadow-map texel in uv, w = texel in m
 };
 
+// The `#version` line, the `Frame` block and positive_infinity(); then the same plus the `Env` block
+// and sun_visibility() (every fragment shader that shades).
+std::string frame_block_glsl();
+std::string fragment_header();
+
 std::string sky_vertex();       // full-screen triangle, no inputs
 std::string sky_fragment();     // env_sky along the pixel's view ray; depth +inf
 std::string mesh_vertex();      // world position, normal, view depth; uniform vec3 u_offset
-std::string opaque_fragment();  // diffuse solids (u_albedo) or the ground plane (u_ground = 1)
-std::string depth_fragment();   // linear depth only (water back faces)
-std::string water_fragment();   // the water surface; samplers at units 0, 1, 2
-// Box-filters u_ss x u_ss texels of the final targets (colour averaged, depths: the nearest) and
-// writes each of the five floats as its four bytes (exact bits) to five RGBA8 attachments.
-std::string pack_fragment();
+std::string solid_fragment();   // diffuse solids (u_albedo), two-sided, shadowed
+std::string ground_fragment();  // the ground plane, shadowed
+std::string depth_only_fragment();  // nothing but the depth buffer (water back faces)
+// The water (water_shader.cpp): its front faces' normal and linear depth (attachments 0, 1), then
+// shading, a full-screen pass: samplers at units 0-2 (opaque colour and depth, back-face depth) and
+// 4, 5 (the front faces' normal and depth).
+std::string water_normal_fragment();
+std::string water_fragment();
+// Supersampling: box-filters u_ss x u_ss texels of the final targets into attachments 0 (colour,
+// averaged), 1 (depth) and 2 (opaque depth; the depths take the nearest).
+std::string downsample_fragment();
 
 }  // namespace spume::shaders

@@ -58,6 +58,7 @@ ImageRGB8 FrameRenderer::render(const FrameInputs& in, FrameReport* report) {
   SurfacePassStats surface_stats;
   const SurfaceImage background = surface_pass_.render(scene, camera, &surface_stats);
   r.used_gl = surface_stats.used_gl;
+  r.surface = surface_stats;
   r.surface_seconds = seconds_since(t0);
 
   ImageRGBf colour = background.colour;

@@ -33,6 +33,7 @@ struct FrameReport {
   bool reconstructed = false, used_gl = false, volume = false;
   size_t triangles = 0, spheres = 0;
   double reconstruct_seconds = 0, surface_seconds = 0, volume_seconds = 0, composite_seconds = 0;
+  SurfacePassStats surface;  // the surface pass by stage
 };
 
 class FrameRenderer {

@@ -58,6 +58,18 @@ std::vector<CameraKey> read_camera(const ParamReader& render) {
   return keys;
 }
 
+// ---- Keys of the water look (issue 15), kept together so they move as one block. ----
+//   render.surface_smoothing         iterations  0..100  default 8     Taubin smoothing of the surface mesh
+//   render.water.refraction          1           0..1    default 1     0: straight-through view; 1: physical bend
+//   render.water.scene_reflections   bool                default true  reflect ground and solids (screen space)
+void read_look_keys(const ParamReader& render, RenderSettings& s) {
+  s.surface.smoothing = int(render.integer_in("surface_smoothing", s.surface.smoothing, 0, 100));
+  const ParamReader water = render.child("water");
+  s.water.refraction = float(water.number_in("refraction", s.water.refraction, 0.0, 1.0));
+  s.water.scene_reflections = water.boolean("scene_reflections", s.water.scene_reflections);
+}
+// ---- end of the water look's keys ----
+
 }  // namespace
 
 bool RenderSettings::draws_diffuse() const {
@@ -111,6 +123,8 @@ RenderSettings read_render_settings(const ParamReader& render, float particle_ra
   s.water.deep_color = colour(water, "deep_color", s.water.deep_color);
   // One absorption for both passes: what the OSMesa pass tints, the volume pass dims bubbles by.
   v.water_sigma = s.water.absorption;
+
+  read_look_keys(render, s);
 
   s.environment.ground = render.boolean("ground", s.environment.ground);
   if (auto g = render.optional_number("ground_height")) s.ground_height = float(*g);

@@ -11,6 +11,7 @@
 //                                         // absent: framed on the scene's bounds
 //     "surface": true,                    // draw the fluid surface (reconstruction + OSMesa)
 //     "surface_cell": 1,                  // marching-cubes cell in units of r
+//     "surface_smoothing": 8,             // Taubin iterations on the surface mesh (0: off)
 //     "solids": true,                     // draw the scene's solids
 //     "supersample": 1,                   // OSMesa pass per-axis supersampling
 //     "integrator": "exact",              // "exact" (union-of-spheres length) or "march" (Eq. 9 as written)
@@ -19,7 +20,8 @@
 //     "spray":  {"radius": 0.3 r, "color": [0.92, 0.95, 1.0]},  // radius 0: not drawn
 //     "foam":   {"radius": 0.5 r, "color": [0.95, 0.95, 0.95]},
 //     "bubble": {"radius": 0.4 r, "color": [0.80, 0.90, 1.00]},
-//     "water": {"absorption": [3.5, 1.1, 0.75], "ior": 1.333, "roughness": 0.04},  // 1/m: both passes
+//     "water": {"absorption": [3.5, 1.1, 0.75], "ior": 1.333, "roughness": 0.04,   // 1/m: both passes
+//               "refraction": 1, "scene_reflections": true},
 //     "ground": true, "ground_height": (just below everything),
 //     "frames": "frames/%04d.png"         // output pattern under OUT/<scene>/ (%04d, %d or ####)
 //   }

@@ -19,7 +19,7 @@ namespace spume {
 namespace {
 
 // Bump when spume's pictures change for the same keys and caches (frames on disk are then stale).
-constexpr int kRenderGeneration = 1;
+constexpr int kRenderGeneration = 2;
 
 // Bounds of what the camera should see when the scene sets no camera: the tanks and the fluid over
 // the whole sequence (a dam break stays in the picture from its first frame to its last).
@@ -46,6 +46,13 @@ float lowest_point(const RenderScene& scene, int up) {
                                              : Aabb{s.min, s.max});
   const float extent = (box.max - box.min).norm();
   return box.min[up] - 1e-3f * extent;
+}
+
+void add_surface_stages(SurfacePassStats& sum, const SurfacePassStats& s) {
+  sum.seconds_context += s.seconds_context, sum.seconds_upload += s.seconds_upload;
+  sum.seconds_shadow += s.seconds_shadow, sum.seconds_opaque += s.seconds_opaque;
+  sum.seconds_water_back += s.seconds_water_back, sum.seconds_water_front += s.seconds_water_front;
+  sum.seconds_resolve += s.seconds_resolve, sum.seconds_readback += s.seconds_readback;
 }
 
 }  // namespace
@@ -166,6 +173,7 @@ RenderStageSummary run_render_stage(PreparedRender& prepared, const nlohmann::js
       any_volume |= report.volume;
       total.reconstruct_seconds += report.reconstruct_seconds;
       total.surface_seconds += report.surface_seconds;
+      add_surface_stages(total.surface, report.surface);
       total.volume_seconds += report.volume_seconds;
       ++summary.written;
       if (!options.quiet) std::printf("Saved: %s\n", path.string().c_str()), std::fflush(stdout);
@@ -186,7 +194,15 @@ RenderStageSummary run_render_stage(PreparedRender& prepared, const nlohmann::js
     return str(" (", int(std::lround(1e3 * seconds / std::max(summary.written, 1))), " ms per frame)");
   };
   if (any_reconstructed) summary.stages.push_back("surface reconstruction" + per_frame(total.reconstruct_seconds));
-  if (any_gl) summary.stages.push_back("OSMesa surface pass" + per_frame(total.surface_seconds));
+  if (any_gl) {
+    const SurfacePassStats& t = total.surface;
+    const auto ms = [&](double seconds) { return int(std::lround(1e3 * seconds / std::max(summary.written, 1))); };
+    summary.stages.push_back(
+        "OSMesa surface pass" + per_frame(total.surface_seconds) +
+        str(": context ", ms(t.seconds_context), ", upload ", ms(t.seconds_upload), ", shadow ", ms(t.seconds_shadow),
+            ", opaque ", ms(t.seconds_opaque), ", water back ", ms(t.seconds_water_back), ", water front ",
+            ms(t.seconds_water_front), ", resolve ", ms(t.seconds_resolve), ", read-back ", ms(t.seconds_readback)));
+  }
   if (!any_gl && summary.written > 0) summary.stages.push_back("CPU sky and ground (nothing showed a surface)");
   if (any_volume)
     summary.stages.push_back((settings.volume.integrator == VolumeIntegrator::Exact ? "volume pass (exact)"

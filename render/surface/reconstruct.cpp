@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "iso_surface.h"
 #include "isolated_particles.h"
+#include "mesh_smoothing.h"
 
 namespace spume {
 
@@ -22,6 +23,7 @@ void SurfaceParams::validate(const char* where) const {
   if (support_factor < 2.0f)
     fail(where, ": support factor ", support_factor,
          " is below 2: the kernel would not reach the neighbours at spacing 2r");
+  if (smoothing < 0 || smoothing > 100) fail(where, ": smoothing must be 0..100 iterations, got ", smoothing);
   if (cell_factor > support_factor)
     fail(where, ": cell factor ", cell_factor, " exceeds the support factor ", support_factor,
          ": cells larger than the kernel lose the surface");
@@ -53,6 +55,14 @@ TriangleMesh reconstruct_surface(std::span<const Vec3f> positions, const Surface
   s.vertices = mesh.vertices.size();
   s.triangles = mesh.triangle_count();
   s.seconds_mesh = seconds(t);
+
+  if (params.smoothing > 0) {
+    t = clock::now();
+    const VertexNeighbours neighbours = vertex_neighbours(mesh);
+    smooth_positions(mesh, neighbours, params.smoothing);
+    smooth_normals(mesh, neighbours, params.smoothing);
+    s.seconds_smooth = seconds(t);
+  }
   if (stats) *stats = s;
   return mesh;
 }

@@ -8,7 +8,8 @@
 // lattice at spacing 2r the continuous field of the half-space the particles fill (up to r beyond the
 // outer centres) is exactly 1/2 at that half-space's boundary, so iso = 0.5 puts the surface at the
 // particles' outer extent; with h = 4r the discrete lattice sum matches within 0.03 r (measured).
-// A curved surface sits inward by about h^2 / (10 R) (mean curvature 1/R) -- see the tests.
+// A curved surface sits inward by about h^2 / (10 R) (mean curvature 1/R) -- see the tests. Then,
+// optionally, Taubin smoothing takes out the particle lattice's bumps (mesh_smoothing.h).
 #include <span>
 
 #include "core/vec.h"
@@ -22,6 +23,7 @@ struct SurfaceParams {
   float cell_factor = 1.0f;      // marching-cubes cell = factor * r (r: triangles ~r, 8 points per particle)
   float iso = 0.5f;              // iso-level as a fraction of the bulk colour (0.5: outer extent)
   int min_neighbours = 5;        // particles with fewer other particles within h are left out
+  int smoothing = 8;             // Taubin lambda|mu iterations on the mesh's positions and normals (mesh_smoothing.h)
 
   // Throws Error for values out of range (naming `where`).
   void validate(const char* where) const;
@@ -32,7 +34,7 @@ struct SurfaceStats {
   size_t kept = 0;       // after leaving isolated ones out
   size_t bricks = 0;     // 8^3-point bricks sampled
   size_t vertices = 0, triangles = 0;
-  double seconds_filter = 0, seconds_field = 0, seconds_mesh = 0;
+  double seconds_filter = 0, seconds_field = 0, seconds_mesh = 0, seconds_smooth = 0;
 };
 
 // Deterministic: the same mesh bytes for any thread count.

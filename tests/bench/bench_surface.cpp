@@ -90,9 +90,12 @@ void BM_SurfacePass(benchmark::State& state) {
   SurfacePassStats stats;
   for (auto _ : state) benchmark::DoNotOptimize(pass.render(scene, cam, &stats));
   state.counters["triangles"] = double(stats.triangles);
-  state.counters["setup_ms"] = 1e3 * stats.seconds_setup;
+  state.counters["upload_ms"] = 1e3 * stats.seconds_upload;
+  state.counters["shadow_ms"] = 1e3 * stats.seconds_shadow;
   state.counters["opaque_ms"] = 1e3 * stats.seconds_opaque;
-  state.counters["water_ms"] = 1e3 * stats.seconds_water;
+  state.counters["water_back_ms"] = 1e3 * stats.seconds_water_back;
+  state.counters["water_front_ms"] = 1e3 * stats.seconds_water_front;
+  state.counters["resolve_ms"] = 1e3 * stats.seconds_resolve;
   state.counters["readback_ms"] = 1e3 * stats.seconds_readback;
 }
 BENCHMARK(BM_SurfacePass)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();

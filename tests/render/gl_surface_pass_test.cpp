@@ -165,6 +165,42 @@ TEST(GlSurfacePass, FlatWaterAbsorbsAlongThePathAndLooksBlue) {
   }
 }
 
+// A red wall standing behind opaque water: where the mirror ray of a pixel meets the wall, the water
+// shows F * (the wall's radiance) + (1 - F) * deep colour (screen-space reflection finds the wall in
+// the opaque image); with scene reflections off, the sky as before.
+TEST(GlSurfacePass, FlatWaterReflectsASolidBehindIt) {
+  FlatWater w(true);
+  w.scene.water.absorption = Vec3f::Constant(1e4f);
+  w.scene.water.deep_color = Vec3f(0.01f, 0.04f, 0.06f);
+  const float wall_z = -7.5f;
+  const TriangleMesh wall = make_box_mesh(Vec3f(-30, 0, -8), Vec3f(30, 6, wall_z));
+  const Vec3f albedo(0.8f, 0.1f, 0.1f);
+  w.scene.solids.push_back({&wall, albedo, Vec3f::Zero()});
+  const Vec3f wall_radiance = albedo.cwiseProduct(w.scene.environment.irradiance(Vec3f::UnitZ())) / std::numbers::pi_v<float>;
+  const SurfaceImage with = pass().render(w.scene, w.cam);
+  save(with, "gl_water_reflects_wall.png");
+  w.scene.water.scene_reflections = false;
+  const SurfaceImage without = pass().render(w.scene, w.cam);
+  int checked = 0;
+  for (int y = w.cam.height - 1; y >= 0; --y) {
+    const int x = w.cam.width / 2;
+    const Ray r = w.cam.ray(x + 0.5f, y + 0.5f);
+    if (r.direction.y() >= 0.0f) continue;
+    const auto [p, cos_i] = w.hit(x, y);
+    if (p.z() < wall_z + 0.5f) continue;  // the water in front of the wall only
+    Vec3f d = r.direction;
+    d.y() = -d.y();
+    const Vec3f h = p + d * ((wall_z - p.z()) / d.z());
+    if (h.y() < 1.3f || h.y() > 5.5f) continue;  // the mirror ray meets the wall well inside its face
+    const float f = w.fresnel(cos_i);
+    const Vec3f deep = w.scene.water.deep_color;
+    EXPECT_LT(rel_diff(with.colour.at(x, y), f * wall_radiance + (1 - f) * deep), 0.03f) << "row " << y;
+    EXPECT_LT(rel_diff(without.colour.at(x, y), f * w.reflected_sky(x, y) + (1 - f) * deep), 0.02f) << "row " << y;
+    ++checked;
+  }
+  EXPECT_GT(checked, 5);
+}
+
 // With the default look (refraction on, sun in view): the sun's highlight shows on the water.
 TEST(GlSurfacePass, SunHighlightOnWater) {
   FlatWater w;

@@ -61,18 +61,26 @@ TEST(ReportCommand, QuickSurfaceAndStabilityWriteSaneFiles) {
     EXPECT_TRUE(fs::is_regular_file(dir / name)) << name;
 
   const auto surface = read_csv(dir / "surface.csv");
-  ASSERT_EQ(surface.size(), 1u + 2 * 3) << "ball and box at 3 cell sizes";
+  ASSERT_EQ(surface.size(), 1u + 2 * (3 + 2)) << "ball and box at 3 cell sizes, then 2 more smoothings";
   ASSERT_EQ(surface[0][0], "shape");
-  ASSERT_EQ(surface[0][6], "mean_abs_distance_r");
+  ASSERT_EQ(surface[0][3], "smoothing");
+  ASSERT_EQ(surface[0][7], "mean_abs_distance_r");
+  ASSERT_EQ(surface[0][12], "median_normal_error_deg");
   for (size_t i = 1; i < surface.size(); ++i) {
-    const double ms = std::stod(surface[i][5]), mean = std::stod(surface[i][6]), max = std::stod(surface[i][8]);
+    const double ms = std::stod(surface[i][6]), mean = std::stod(surface[i][7]), max = std::stod(surface[i][9]);
     EXPECT_GT(ms, 0.0);
     // The mesh lies on the particles' extent to within a particle radius (tests/render/surface_*).
     EXPECT_GT(mean, 0.0);
-    EXPECT_LT(mean, 0.5) << surface[i][0] << " cell " << surface[i][2];
+    EXPECT_LT(mean, 0.5) << surface[i][0] << " cell " << surface[i][2] << " smoothing " << surface[i][3];
     EXPECT_LE(mean, max);
     EXPECT_LT(max, 1.5);
-    EXPECT_GT(std::stoul(surface[i][4]), 100u);
+    EXPECT_GT(std::stoul(surface[i][5]), 100u);
+    // Normals within a few degrees of the analytic surface's, but for the box's rounded edges.
+    const double normal_mean = std::stod(surface[i][11]), normal_max = std::stod(surface[i][13]);
+    EXPECT_GE(normal_mean, 0.0);
+    EXPECT_LT(normal_mean, 15.0);
+    EXPECT_LE(normal_mean, normal_max);
+    EXPECT_LE(normal_max, 90.0);
   }
   const auto stability = read_csv(dir / "stability.csv");
   ASSERT_GT(stability.size(), 10u);
