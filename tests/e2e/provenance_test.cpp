@@ -192,9 +192,9 @@ TEST_F(Provenance, NonsenseIsRefusedOrWarnedAbout) {
   r = run_spume("simulate " + args("--set diffuse.tau_ta=[1,1.00000001]"));
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_TRUE(contains(r.output, "must be below max")) << r.output;
-  // A radius 1000 times the particles' spacing: warned, with both numbers.
-  r = run_spume("simulate " + args("--set fluid.radius=20"));
-  EXPECT_TRUE(contains(r.output, "warning: fluid.radius 20 m implies a particle spacing of 40 m")) << r.output;
+  // A radius 250 times the particles' spacing: warned, with both numbers.
+  r = run_spume("simulate " + args("--set fluid.radius=5"));
+  EXPECT_TRUE(contains(r.output, "warning: fluid.radius 5 m implies a particle spacing of 10 m")) << r.output;
   EXPECT_TRUE(contains(r.output, "0.04 m from their nearest neighbour")) << r.output;
 }
 

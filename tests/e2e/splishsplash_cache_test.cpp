@@ -52,7 +52,9 @@ TEST_P(SplishsplashCache, WhatIsEmittedStaysInTheTankAndBubblesSitInWater) {
     // Inside the tank's walls (its open top allows spray above the rim).
     for (int a = 0; a < 3; ++a) {
       EXPECT_GE(p[a], c.tank_min[a] - slack) << i;
-      if (a != 1) EXPECT_LE(p[a], c.tank_max[a] + slack) << i;
+      if (a != 1) {
+        EXPECT_LE(p[a], c.tank_max[a] + slack) << i;
+      }
     }
     if (diffuse.types[i] != DiffuseType::Bubble) continue;
     ++bubbles;
@@ -69,7 +71,7 @@ INSTANTIATE_TEST_SUITE_P(
     RealFrames, SplishsplashCache,
     ::testing::Values(Cache{"splishsplash_dambreak", 0.021f, 25.0, {-1.55f, 0, -0.8f}, {1.55f, 8, 0.8f}, 22},
                       Cache{"splishsplash_emitter", 0.015f, 50.0, {-1.3f, -0.05f, -0.5f}, {1.3f, 2.05f, 0.5f}, 47}),
-    [](const ::testing::TestParamInfo<Cache>& info) { return info.param.folder; });
+    [](const ::testing::TestParamInfo<Cache>& param) { return param.param.folder; });
 
 }  // namespace
 }  // namespace spume
