@@ -20,5 +20,6 @@ Command cmd_farm_slurm();
 Command cmd_info();
 Command cmd_report();
 Command cmd_compare();
+Command cmd_keys();
 
 }  // namespace spume

@@ -17,7 +17,7 @@ namespace {
 
 std::vector<Command> all_commands() {
   return {cmd_run(),         cmd_simulate(),   cmd_render(), cmd_lookdev(),
-          cmd_farm_chunks(), cmd_farm_slurm(), cmd_info(),   cmd_report(), cmd_compare()};
+          cmd_farm_chunks(), cmd_farm_slurm(), cmd_info(),   cmd_report(), cmd_compare(), cmd_keys()};
 }
 
 bool is_help(const std::string& a) { return a == "-h" || a == "--help"; }

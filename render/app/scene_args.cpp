@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "keys/scene_keys.h"
 #include "scene_file.h"
 
 namespace spume {
@@ -40,7 +41,7 @@ std::vector<cli::OptionSpec> scene_command_options() {
       {"quiet", "", "no progress on stderr"},
       {"fluid", "PATTERN", "fluid files with every default, no scene file (e.g. 'cache/ParticleData_Fluid_%d.bgeo')"},
       {"radius", "R", "with --fluid: the fluid particle radius in m"},
-      {"fps", "F", "with --fluid: frames per second of the fluid files (default 50)"},
+      {"fps", "F", "with --fluid: frames per second of the fluid files (default: fluid.fps's)"},
       {"tank", "auto|X0,Y0,Z0,X1,Y1,Z1",
        "with --fluid: the container, inferred from the fluid (auto) or its corners in m; open at the top"},
       {"allow-gaps", "", "frames missing from the fluid files are interpolated between their neighbours"},
@@ -67,7 +68,7 @@ SceneSetup load_scene_setup(const cli::ParsedArgs& args, const std::vector<std::
                      {{"source", "files"},
                       {"files", *args.value("fluid")},
                       {"radius", cli::parse_double(*args.value("radius"), "--radius")},
-                      {"fps", args.has("fps") ? cli::parse_double(*args.value("fps"), "--fps") : 50.0}}}};
+                      {"fps", args.has("fps") ? cli::parse_double(*args.value("fps"), "--fps") : keys::fluid::fps.value[0]}}}};
       if (auto tank = args.value("tank")) scene["solids"] = Json::array({tank_from_option(*tank)});
       return scene_from_json(std::move(scene), "--fluid", ".", "fluid", overrides);
     }

@@ -6,16 +6,21 @@
 #include <string>
 
 #include "core/vec.h"
+#include "keys/render_keys.h"
 
 namespace spume {
 
+inline Vec3f declared_vec3(const KeySpec& k) {
+  return Vec3f(float(k.value[0]), float(k.value[1]), float(k.value[2]));
+}
+
 struct Environment {
-  Vec3f sun_direction = Vec3f(-0.45f, 0.62f, 0.64f).normalized();  // unit, towards the sun
+  Vec3f sun_direction = declared_vec3(keys::render::sun_direction).normalized();  // unit, towards the sun
   Vec3f sun_irradiance = Vec3f(2.3f, 2.15f, 1.95f);  // on a surface facing the sun; warm white
   float sun_angular_radius = 0.012f;                  // rad: the disc in the sky (about 2x the real sun)
   Vec3f sky_zenith = Vec3f(0.10f, 0.22f, 0.55f);      // radiance straight up
   Vec3f sky_horizon = Vec3f(0.55f, 0.68f, 0.85f);     // radiance at the horizon (haze)
-  bool ground = true;                                 // draw a ground plane (when the scene has no floor)
+  bool ground = keys::render::ground.value[0] != 0.0;  // draw a ground plane (when the scene has no floor)
   float ground_height = 0.0f;                         // m, the plane y = ground_height
   Vec3f ground_albedo = Vec3f(0.58f, 0.48f, 0.34f);   // sand
   float ground_tile = 0.5f;                           // m, faint checker for scale and refraction; 0: plain
@@ -31,14 +36,14 @@ struct Environment {
 };
 
 struct WaterLook {
-  float ior = 1.333f;                                  // refractive index (Schlick F0 = 0.02)
+  float ior = float(keys::render::water_ior.value[0]);  // refractive index (Schlick F0 = 0.02)
   // 1/m per channel, Beer-Lambert. About 5x clear sea water, so tank-sized scenes (0.1-1 m deep) read
   // as water; use the same value for the volume pass's water_sigma.
-  Vec3f absorption = Vec3f(3.5f, 1.1f, 0.75f);
-  Vec3f deep_color = Vec3f(0.012f, 0.055f, 0.075f);    // radiance of water seen through an infinite depth
-  float roughness = 0.04f;                             // GGX alpha of the sun's highlight
-  float refraction = 1.0f;                             // 0: straight-through view of the bottom; 1: physical bend
-  bool scene_reflections = true;                       // reflect the ground and solids (screen space); false: sky only
+  Vec3f absorption = declared_vec3(keys::render::water_absorption);
+  Vec3f deep_color = declared_vec3(keys::render::water_deep_color);  // radiance through an infinite depth
+  float roughness = float(keys::render::water_roughness.value[0]);  // GGX alpha of the sun's highlight
+  float refraction = float(keys::render::water_refraction.value[0]);  // 0: straight through; 1: physical bend
+  bool scene_reflections = keys::render::water_scene_reflections.value[0] != 0.0;  // false: the sky only
 };
 
 // The GLSL (450) declarations of the environment: a uniform block `Env` at binding 0 and the

@@ -6,69 +6,54 @@
 
 #include "core/error.h"
 #include "io/frame_pattern.h"
+#include "keys/render_keys.h"
 
 namespace spume {
 namespace {
 
-struct LookDefault {
-  const char* key;
-  float radius_in_r;
-  Vec3f color;
-};
-// Spray smaller than foam, so it reads sharper (the paper's Sec. 4); bubbles in between, bluish.
-const LookDefault kLookDefaults[kDiffuseTypeCount] = {
-    {"spray", 0.3f, Vec3f(0.92f, 0.95f, 1.0f)},
-    {"foam", 0.5f, Vec3f(0.95f, 0.95f, 0.95f)},
-    {"bubble", 0.4f, Vec3f(0.80f, 0.90f, 1.0f)},
-};
+namespace k = keys::render;
 
-Vec3f colour(const ParamReader& r, const std::string& key, const Vec3f& fallback) {
-  const Vec3f c = r.vec3(key, fallback);
-  if (!(c.array() >= 0.0f).all() || !(c.array() <= 100.0f).all())
-    r.fail_at(key, "expected linear RGB [r, g, b] with each channel in [0, 100]");
-  return c;
+// The three diffuse types' keys, in DiffuseType order.
+struct LookKeys {
+  const KeySpec& radius;
+  const KeySpec& color;
+};
+const LookKeys kLookKeys[kDiffuseTypeCount] = {
+    {k::spray_radius, k::spray_color}, {k::foam_radius, k::foam_color}, {k::bubble_radius, k::bubble_color}};
+
+ParamReader look_reader(const ParamReader& render, const KeySpec& key) {
+  const std::string path = key.path;  // "render.spray.radius" -> the "spray" object
+  const size_t last = path.rfind('.'), before = path.rfind('.', last - 1);
+  return render.child(path.substr(before + 1, last - before - 1));
 }
 
 std::vector<CameraKey> read_camera(const ParamReader& render) {
-  if (!render.has("camera")) return {};
-  const ParamReader cam = render.child("camera");
-  auto read_key = [](const ParamReader& k, double time) {
+  if (!render.has(k::camera.name())) return {};
+  const ParamReader cam = render.child(k::camera.name());
+  auto read_key = [](const ParamReader& r, double time, const KeySpec& position, const KeySpec& target,
+                     const KeySpec& fov) {
     CameraKey key;
     key.time = time;
-    if (!k.has("position")) k.fail_at("position", "missing: the camera position [x, y, z] in m");
-    key.position = k.vec3("position", key.position);
-    key.target = k.vec3("target", key.target);
-    key.fov_y_degrees = float(k.number_in("fov", key.fov_y_degrees, 1.0, 170.0));
-    if ((key.position - key.target).norm() <= 0.0f) k.fail_at("target", "must differ from the position");
+    key.position = r.vec3(position);
+    key.target = r.vec3(target);
+    key.fov_y_degrees = float(r.number(fov));
+    if ((key.position - key.target).norm() <= 0.0f) r.fail_at("target", "must differ from the position");
     return key;
   };
   std::vector<CameraKey> keys;
-  if (cam.has("keys")) {
-    for (const ParamReader& k : cam.array_of_objects("keys")) {
-      if (!k.has("time")) k.fail_at("time", "missing: the key's time in s");
-      const double t = k.number("time", 0.0);
+  if (cam.has(k::camera_keys.name())) {
+    for (const ParamReader& r : cam.array_of_objects(k::camera_keys.name())) {
+      const double t = r.number(k::key_time);
       if (!keys.empty() && !(t > keys.back().time))
-        k.fail_at("time", str("camera key times must increase; ", t, " follows ", keys.back().time));
-      keys.push_back(read_key(k, t));
+        r.fail_at("time", str("camera key times must increase; ", t, " follows ", keys.back().time));
+      keys.push_back(read_key(r, t, k::key_position, k::key_target, k::key_fov));
     }
     if (keys.empty()) cam.fail_at("keys", "expected at least one key {\"time\", \"position\", \"target\", \"fov\"}");
   } else {
-    keys.push_back(read_key(cam, 0.0));
+    keys.push_back(read_key(cam, 0.0, k::camera_position, k::camera_target, k::camera_fov));
   }
   return keys;
 }
-
-// ---- Keys of the water look (issue 15), kept together so they move as one block. ----
-//   render.surface_smoothing         iterations  0..100  default 8     Taubin smoothing of the surface mesh
-//   render.water.refraction          1           0..1    default 1     0: straight-through view; 1: physical bend
-//   render.water.scene_reflections   bool                default true  reflect ground and solids (screen space)
-void read_look_keys(const ParamReader& render, RenderSettings& s) {
-  s.surface.smoothing = int(render.integer_in("surface_smoothing", s.surface.smoothing, 0, 100));
-  const ParamReader water = render.child("water");
-  s.water.refraction = float(water.number_in("refraction", s.water.refraction, 0.0, 1.0));
-  s.water.scene_reflections = water.boolean("scene_reflections", s.water.scene_reflections);
-}
-// ---- end of the water look's keys ----
 
 }  // namespace
 
@@ -80,60 +65,56 @@ bool RenderSettings::draws_diffuse() const {
 
 RenderSettings read_render_settings(const ParamReader& render, float particle_radius) {
   RenderSettings s;
-  if (render.has("resolution")) {
-    const Json v = render.raw("resolution");
+  if (render.has(k::resolution.name())) {
+    const Json v = render.raw(k::resolution.name());
     auto whole = [](const Json& x) { return x.is_number() && x.get<double>() == std::floor(x.get<double>()); };
-    if (!v.is_array() || v.size() != 2 || !whole(v[0]) || !whole(v[1]) || v[0].get<double>() < 1 ||
-        v[1].get<double>() < 1 || v[0].get<double>() > 16384 || v[1].get<double>() > 16384)
-      render.fail_at("resolution", str("expected [width, height] in whole pixels from 1 to 16384, found ", v.dump()));
+    const bool ok = v.is_array() && v.size() == 2 && whole(v[0]) && whole(v[1]) &&
+                    out_of_range(k::resolution, v[0].get<double>()).empty() &&
+                    out_of_range(k::resolution, v[1].get<double>()).empty();
+    if (!ok)
+      render.fail_at("resolution", str("expected [width, height] in whole pixels ", range_description(k::resolution),
+                                       ", found ", v.dump()));
     s.width = v[0].get<int>();
     s.height = v[1].get<int>();
   }
   s.camera = read_camera(render);
-  s.draw_surface = render.boolean("surface", s.draw_surface);
-  s.draw_solids = render.boolean("solids", s.draw_solids);
-  s.supersample = int(render.integer_in("supersample", s.supersample, 1, 4));
+  s.draw_surface = render.boolean(k::surface);
+  s.draw_solids = render.boolean(k::solids);
+  s.supersample = int(render.integer(k::supersample));
 
   s.surface.particle_radius = particle_radius;
-  s.surface.cell_factor = float(render.number_in("surface_cell", s.surface.cell_factor, 0.25, 4.0));
+  s.surface.cell_factor = float(render.number(k::surface_cell));
+  s.surface.smoothing = int(render.integer(k::surface_smoothing));
   s.surface.validate("render.surface_cell");
 
   VolumeSettings& v = s.volume;
-  v.samples_per_pixel = int(render.integer_in("spp", 1, 1, 1024));
-  const double seed = render.number_in("seed", 0.0, 0.0, 4294967295.0);
-  if (seed != std::floor(seed)) render.fail_at("seed", "expected a whole number");
-  v.seed = uint64_t(seed);
-  v.integrator = render.choice("integrator", "exact", {"exact", "march"}) == "exact" ? VolumeIntegrator::Exact
-                                                                                     : VolumeIntegrator::March;
-  v.march_step = float(render.non_negative("march_step", 0.0));
-  v.alpha = float(render.non_negative("alpha", v.alpha));
+  v.samples_per_pixel = int(render.integer(k::spp));
+  v.seed = uint64_t(render.integer(k::seed));
+  v.integrator = render.choice(k::integrator) == "exact" ? VolumeIntegrator::Exact : VolumeIntegrator::March;
+  v.march_step = float(render.number(k::march_step));
+  v.alpha = float(render.number(k::alpha));
   for (int t = 0; t < kDiffuseTypeCount; ++t) {
-    const LookDefault& d = kLookDefaults[t];
-    const ParamReader look = render.child(d.key);
-    v.look[size_t(t)].radius = float(look.number_in("radius", d.radius_in_r * particle_radius, 0.0, 1e3));
-    v.look[size_t(t)].color = colour(look, "color", d.color);
+    const ParamReader look = look_reader(render, kLookKeys[t].radius);
+    v.look[size_t(t)].radius = float(look.number(kLookKeys[t].radius, particle_radius));
+    v.look[size_t(t)].color = look.vec3(kLookKeys[t].color);
   }
 
   const ParamReader water = render.child("water");
-  s.water.absorption = water.vec3("absorption", s.water.absorption);
-  if (!(s.water.absorption.array() >= 0.0f).all())
-    water.fail_at("absorption", "expected [r, g, b] in 1/m, each >= 0");
-  s.water.ior = float(water.number_in("ior", s.water.ior, 1.0, 3.0));
-  s.water.roughness = float(water.number_in("roughness", s.water.roughness, 0.001, 1.0));
-  s.water.deep_color = colour(water, "deep_color", s.water.deep_color);
+  s.water.absorption = water.vec3(k::water_absorption);
+  s.water.ior = float(water.number(k::water_ior));
+  s.water.roughness = float(water.number(k::water_roughness));
+  s.water.deep_color = water.vec3(k::water_deep_color);
+  s.water.refraction = float(water.number(k::water_refraction));
+  s.water.scene_reflections = water.boolean(k::water_scene_reflections);
   // One absorption for both passes: what the OSMesa pass tints, the volume pass dims bubbles by.
   v.water_sigma = s.water.absorption;
 
-  read_look_keys(render, s);
-
-  s.environment.ground = render.boolean("ground", s.environment.ground);
-  if (auto g = render.optional_number("ground_height")) s.ground_height = float(*g);
-  if (render.has("sun_direction")) {
-    const Vec3f d = render.vec3("sun_direction", s.environment.sun_direction);
-    if (!(d.norm() > 0.0f)) render.fail_at("sun_direction", "expected a non-zero direction [x, y, z] towards the sun");
-    s.environment.sun_direction = d.normalized();
-  }
-  s.frame_pattern = render.text("frames", s.frame_pattern);
+  s.environment.ground = render.boolean(k::ground);
+  if (render.has(k::ground_height.name())) s.ground_height = float(render.number(k::ground_height));
+  const Vec3f sun = render.vec3(k::sun_direction);
+  if (!(sun.norm() > 0.0f)) render.fail_at("sun_direction", "expected a non-zero direction [x, y, z] towards the sun");
+  s.environment.sun_direction = sun.normalized();
+  s.frame_pattern = render.text(k::frames.name(), k::frames.choices);
   if (!is_frame_pattern(s.frame_pattern))
     render.fail_at("frames", str("\"", s.frame_pattern,
                                  "\" needs one frame placeholder (%04d, %d or ####), e.g. \"frames/%04d.png\""));

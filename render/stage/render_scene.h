@@ -18,7 +18,7 @@ namespace spume {
 struct RenderScene {
   std::string name;
   std::filesystem::path scene_out;     // OUT/<scene>
-  double fps = 50.0;
+  double fps = 0.0;                    // set by the builder from the scene
   Vec3f up = Vec3f::UnitY();           // opposite gravity
   std::unique_ptr<FluidSource> fluid;  // the fluid frames (the solver's caches or the user's files)
   std::string fluid_pattern;           // their file pattern, for frame records

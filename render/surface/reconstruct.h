@@ -14,16 +14,17 @@
 
 #include "core/vec.h"
 #include "triangle_mesh.h"
+#include "keys/render_keys.h"
 
 namespace spume {
 
 struct SurfaceParams {
   float particle_radius = 0.0f;  // m, r (spacing 2r); required
   float support_factor = 4.0f;   // kernel support h = factor * r (4r = two particle spacings)
-  float cell_factor = 1.0f;      // marching-cubes cell = factor * r (r: triangles ~r, 8 points per particle)
+  float cell_factor = float(keys::render::surface_cell.value[0]);  // marching-cubes cell = factor * r
   float iso = 0.5f;              // iso-level as a fraction of the bulk colour (0.5: outer extent)
   int min_neighbours = 5;        // particles with fewer other particles within h are left out
-  int smoothing = 8;             // Taubin lambda|mu iterations on the mesh's positions and normals (mesh_smoothing.h)
+  int smoothing = int(keys::render::surface_smoothing.value[0]);  // Taubin iterations (mesh_smoothing.h)
 
   // Throws Error for values out of range (naming `where`).
   void validate(const char* where) const;

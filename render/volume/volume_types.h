@@ -8,6 +8,7 @@
 
 #include "core/frames.h"
 #include "core/vec.h"
+#include "keys/render_keys.h"
 
 namespace spume {
 
@@ -35,15 +36,17 @@ struct DiffuseLook {
 
 struct VolumeSettings {
   std::array<DiffuseLook, kDiffuseTypeCount> look{};  // indexed by DiffuseType
-  float alpha = 50.0f;              // 1/m; absorption scale of Eq. 9
+  float alpha = float(keys::render::alpha.value[0]);  // 1/m; absorption scale of Eq. 9
   // 1/m per channel. Material seen through the water surface has its colour multiplied by
-  // exp(-water_sigma * distance the eye ray has travelled in water); its opacity is unchanged.
-  Vec3f water_sigma = Vec3f(0.9f, 0.25f, 0.2f);
+  // exp(-water_sigma * distance the eye ray has travelled in water); its opacity is unchanged. The
+  // surface pass's absorption (render.water.absorption), so bubbles dim as the water around them does.
+  Vec3f water_sigma = Vec3f(float(keys::render::water_absorption.value[0]), float(keys::render::water_absorption.value[1]),
+                            float(keys::render::water_absorption.value[2]));
   VolumeIntegrator integrator = VolumeIntegrator::Exact;
   ExactMethod exact_method = ExactMethod::ScreenBins;
-  float march_step = 0.0f;          // m; Delta x of Eq. 9. <= 0: half the smallest drawn radius
-  int samples_per_pixel = 1;        // 1 = pixel centre; more = jittered, averaged
-  uint64_t seed = 0;                // jitter key, with the frame index, pixel and sample
+  float march_step = float(keys::render::march_step.value[0]);  // m; Eq. 9's Delta x. <= 0: half the smallest r_d
+  int samples_per_pixel = int(keys::render::spp.value[0]);  // 1 = pixel centre; more = jittered, averaged
+  uint64_t seed = uint64_t(keys::render::seed.value[0]);  // jitter key, with the frame, pixel and sample
 
   bool drawn(DiffuseType t) const { return look[size_t(t)].radius > 0.0f; }
 };

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "keys/scene_keys.h"
 #include "vec.h"
 
 namespace spume {
@@ -32,8 +33,8 @@ struct FluidFrame {
 struct FluidSequenceInfo {
   float particle_radius = 0.0f;  // m; the fluid particle's volume radius r (spacing 2r)
   float support_radius = 0.0f;   // m; the influence radius h
-  double fps = 50.0;             // frames per second
-  float rest_density = 1000.0f;  // kg/m^3; gives the uniform mass rho0 (2r)^3
+  double fps = keys::fluid::fps.value[0];                        // frames per second
+  float rest_density = float(keys::fluid::rest_density.value[0]);  // kg/m^3; uniform mass rho0 (2r)^3
   float uniform_mass() const { return rest_density * 8.0f * particle_radius * particle_radius * particle_radius; }
 };
 

@@ -197,9 +197,13 @@ std::string ParamReader::declared_path() const {
 }
 
 std::string ParamReader::declared_key(const KeySpec& k) const {
-  // A reader at the root may stand for the object alone (a "diffuse" object read on its own).
+  // A document may hold an object alone (a "render" object read on its own): its keys' paths end the
+  // declared ones.
   const std::string name = k.name(), here = declared_path();
-  if (!here.empty() && here + "." + name != k.path)
+  const std::string full = here.empty() ? name : here + "." + name, declared = k.path;
+  const bool ends = declared.size() > full.size() && declared.compare(declared.size() - full.size(), full.size(), full) == 0 &&
+                    declared[declared.size() - full.size() - 1] == '.';
+  if (declared != full && !ends)
     throw std::logic_error(str("key ", k.path, " read at ", here.empty() ? "the root" : here));
   return name;
 }

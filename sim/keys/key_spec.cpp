@@ -13,7 +13,8 @@ std::string number_text(double v) {
 
 std::string values_text(const KeySpec& k) {
   switch (k.type) {
-    case KeyType::Range: return "[" + number_text(k.value[0]) + ", " + number_text(k.value[1]) + "]";
+    case KeyType::Range:
+    case KeyType::Size: return "[" + number_text(k.value[0]) + ", " + number_text(k.value[1]) + "]";
     case KeyType::Vec3:
     case KeyType::Colour:
       return "[" + number_text(k.value[0]) + ", " + number_text(k.value[1]) + ", " + number_text(k.value[2]) + "]";

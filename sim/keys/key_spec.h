@@ -20,6 +20,7 @@ enum class KeyType {
   Vec3,     // [x, y, z]
   Colour,   // linear RGB [r, g, b]
   Range,    // [min, max] with min < max
+  Size,     // [width, height], whole numbers
   Object,   // {...}: its keys are declared under it
   List,     // [...] of objects: its entries' keys are declared as path[].key
 };

@@ -1,5 +1,6 @@
 #pragma once
-// Reading a scene's solids (SI units). Defaults: Solid's and Motion's (geometry/solids.h), the only ones.
+// Reading a scene's solids (SI units). Each key is declared once, with its unit, default and range, in
+// keys/scene_keys.h; the examples below are examples.
 //
 //   "solids": [
 //     {"type": "tank", "min": [0, 0, 0], "max": [4, 3, 1], "open_top": true},   // m; hollow box
@@ -16,7 +17,7 @@
 //     {"type": "box", "min": [..], "max": [..],                                  // a floating crate
 //      "rotation": {"axis": [0, 0, 1], "angle": 0.3},    // optional, boxes only: about the box centre, rad
 //      "dynamic": {"density": 500,                       // kg/m^3, or "mass": kg (exactly one of them)
-//                  "friction": 0.5}},                    // Coulomb coefficient, default 0.5
+//                  "friction": 0.5}},                    // Coulomb coefficient
 //     {"type": "sphere", ..., "dynamic": {"mass": 2.0}},
 //     {"type": "tank", "infer": true}   // file sources: the walls the fluid presses on (scene/container.h)
 //   ]

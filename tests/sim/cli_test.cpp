@@ -253,7 +253,7 @@ TEST_F(SpumeCommand, RenderNeedsTheCachesAndBadRenderKeysAreNamed) {
       {R"("resolution": [64])", "/render/resolution: expected [width, height] in whole pixels"},
       {R"("integrator": "rk4")", "\"rk4\" is not a choice; allowed: \"exact\", \"march\""},
       {R"("foam": {"radius": -1})", "/render/foam/radius: value -1 is out of range"},
-      {R"("spray": {"color": [1, -1, 0]})", "/render/spray/color: expected linear RGB"},
+      {R"("spray": {"color": [1, -1, 0]})", "/render/spray/color: value -1 is out of range; allowed [0, 100]"},
       {R"("camera": {"position": [1, 1, 1], "target": [1, 1, 1]})", "/render/camera/target: must differ"},
       {R"("frames": "frames/a.png")", "/render/frames: \"frames/a.png\" needs one frame placeholder"},
       {R"("spp": 0)", "/render/spp: value 0 is out of range"},
