@@ -13,6 +13,7 @@
 #include "io/file_identity.h"
 #include "io/frame_pattern.h"
 #include "io/spume_cache.h"
+#include "stage/render_stats.h"
 #include "stage/solid_meshes.h"
 
 namespace spume {
@@ -46,6 +47,10 @@ float lowest_point(const RenderScene& scene, int up) {
                                              : Aabb{s.min, s.max});
   const float extent = (box.max - box.min).norm();
   return box.min[up] - 1e-3f * extent;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 void add_surface_stages(SurfacePassStats& sum, const SurfacePassStats& s) {
@@ -163,11 +168,25 @@ RenderStageSummary run_render_stage(PreparedRender& prepared, const nlohmann::js
       progress.update(k + 1, "current, skipped");
       continue;
     }
+    const auto frame_start = std::chrono::steady_clock::now();
     const LoadedFrame frame = load_frame(prepared, f);  // its errors name the frame
+    const double load_seconds = seconds_since(frame_start);
     with_context(str("frame ", f), [&] {
       FrameReport report;
       const ImageRGB8 image = renderer.render(frame.inputs(), &report);
+      const auto write_start = std::chrono::steady_clock::now();
       write_png(path, image, record);
+      // Every frame as it is written, so a run stopped midway keeps the times of what it drew.
+      merge_render_stats(scene.scene_out, {{.frame = f,
+                                            .triangles = report.triangles,
+                                            .spheres = report.spheres,
+                                            .load = load_seconds,
+                                            .reconstruct = report.reconstruct_seconds,
+                                            .surface = report.surface_seconds,
+                                            .volume = report.volume_seconds,
+                                            .composite = report.composite_seconds,
+                                            .write = seconds_since(write_start),
+                                            .total = seconds_since(frame_start)}});
       any_reconstructed |= report.reconstructed;
       any_gl |= report.used_gl;
       any_volume |= report.volume;

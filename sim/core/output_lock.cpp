@@ -46,6 +46,11 @@ std::string read_text(const std::filesystem::path& path) {
 
 }  // namespace
 
+void update_under_gate(const std::filesystem::path& dir, const std::function<void()>& update) {
+  Gate gate(dir / ".lock.gate");
+  update();
+}
+
 OutputLock::OutputLock(const std::filesystem::path& dir, Mode mode, const std::string& keys, const std::string& what,
                        bool quiet) {
   std::error_code ec;

@@ -9,9 +9,14 @@
 // killed run never leaves the folder locked. (flock is not reliable on every network file system;
 // farms across machines share frames, never caches, and render frames whose records match.)
 #include <filesystem>
+#include <functional>
 #include <string>
 
 namespace spume {
+
+// Runs `update` holding the folder's gate (briefly, never across a frame): for a small file that runs
+// sharing the folder each rewrite in turn, e.g. the render's per-frame timings.
+void update_under_gate(const std::filesystem::path& dir, const std::function<void()>& update);
 
 class OutputLock {
  public:

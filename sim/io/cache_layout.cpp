@@ -41,5 +41,6 @@ std::filesystem::path diffuse_bgeo_path(const std::filesystem::path& scene_out, 
 }
 
 std::filesystem::path fluid_survey_path(const std::filesystem::path& scene_out) { return scene_out / "fluid_survey.json"; }
+std::filesystem::path render_stats_path(const std::filesystem::path& scene_out) { return scene_out / "render_stats.csv"; }
 
 }  // namespace spume

@@ -5,6 +5,7 @@
 //   fluid/restart_0000.spr    the solver's state at the last frame      fluid/bodies.csv
 //   fluid_bgeo/fluid_0000.bgeo, diffuse/diffuse_0000.spd, diffuse_bgeo/diffuse_0000.bgeo, diffuse/record.json
 //   fluid_survey.json         every fluid frame's identity and bounds (io/fluid_survey.h)
+//   render_stats.csv          the render's milliseconds per stage, one row per frame drawn
 #include <filesystem>
 #include <string>
 
@@ -22,5 +23,6 @@ std::filesystem::path body_track_path(const std::filesystem::path& scene_out);
 std::filesystem::path diffuse_cache_path(const std::filesystem::path& scene_out, int frame);
 std::filesystem::path diffuse_bgeo_path(const std::filesystem::path& scene_out, int frame);
 std::filesystem::path fluid_survey_path(const std::filesystem::path& scene_out);
+std::filesystem::path render_stats_path(const std::filesystem::path& scene_out);
 
 }  // namespace spume

@@ -38,8 +38,9 @@ double scaled_default(const KeySpec& k, int i, double r, double mass_ratio) {
     case Scaling::Radius: return v * r;
     case Scaling::Velocity:
     case Scaling::Time: return v * std::sqrt(s);
-    case Scaling::Rate: return v / std::sqrt(s);
-    case Scaling::Energy: return v * mass_ratio * s;
+    // Rounded as spume always has (1/sqrt(s) and mass_ratio * s first): caches stay byte-identical.
+    case Scaling::Rate: return v * (1.0 / std::sqrt(s));
+    case Scaling::Energy: return v * (mass_ratio * s);
   }
   return v;
 }

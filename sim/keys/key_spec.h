@@ -38,7 +38,9 @@ enum class Scaling {
 enum class Bound { Unset, Closed, Open };
 
 inline constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
-inline constexpr double kDefaultsReferenceRadius = 0.02;  // r0, m
+// r0, m: the float 0.02f spume has always scaled from (as a double 0.02 the derived defaults move by
+// one float ulp, and every cache with them).
+inline constexpr double kDefaultsReferenceRadius = double(0.02f);
 
 struct KeySpec {
   const char* path;          // "diffuse.k_ta", "solids[].motion.amplitude"

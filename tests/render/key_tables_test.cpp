@@ -36,7 +36,7 @@ TEST(KeyTables, TheReadmeShowsEveryGroupExactlyAsDeclared) {
 
 TEST(KeyTables, DeclarationsAreUniqueAndConsistent) {
   std::set<std::string> paths;
-  for (const KeyGroup& g : key_groups())
+  for (const KeyGroup& g : key_groups()) {
     for (const KeySpec* k : g.keys) {
       EXPECT_TRUE(paths.insert(k->path).second) << k->path << " declared twice";
       EXPECT_FALSE(std::string(k->doc).empty()) << k->path;
@@ -49,12 +49,17 @@ TEST(KeyTables, DeclarationsAreUniqueAndConsistent) {
         // The default lies in the range (at r0 for scaled keys).
         const int n = k->type == KeyType::Vec3 || k->type == KeyType::Colour ? 3
                       : k->type == KeyType::Range || k->type == KeyType::Size ? 2 : 1;
-        if (k->has_value())
-          for (int i = 0; i < n; ++i)
+        if (k->has_value()) {
+          for (int i = 0; i < n; ++i) {
             EXPECT_EQ(out_of_range(*k, scaled_default(*k, i, kDefaultsReferenceRadius)), "") << k->path << "[" << i << "]";
+          }
+        }
       }
-      if (k->type == KeyType::Choice) EXPECT_NE(std::string(k->choices).find('|'), std::string::npos) << k->path;
+      if (k->type == KeyType::Choice) {
+        EXPECT_NE(std::string(k->choices).find('|'), std::string::npos) << k->path;
+      }
     }
+  }
 }
 
 TEST(KeyTables, ReadingADeclaredKeyChecksItsRangeAndNamesIt) {
