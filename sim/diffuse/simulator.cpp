@@ -105,6 +105,7 @@ void DiffuseSimulator::step(const FluidStepState& state, uint32_t step, float dt
         uint8_t alive = 1;
         // Where no fluid is within h there is no fluid velocity to follow: keep the particle's own.
         const Vec3f u = samples_.kernel_sum[i] > 0.0f ? samples_.fluid_velocity[i] : v;
+        const Vec3f from = x;
         switch (particles_.types[i]) {
           case DiffuseType::Spray: advance_spray(x, v, p.gravity, dt, p.spray_integrator); break;
           case DiffuseType::Foam:
@@ -114,6 +115,7 @@ void DiffuseSimulator::step(const FluidStepState& state, uint32_t step, float dt
             break;
           case DiffuseType::Bubble: advance_bubble(x, v, u, bubble); break;
         }
+        solids.stop_at_tank_walls(from, x, v, skin);
         solids.push_out(x, v, skin);
         if (alive && limit && !setup_.domain.contains(x)) alive = 2;
         alive_[i] = alive;

@@ -175,8 +175,8 @@ SolidCoverage integrate_directions(const NearSolids& near, const Vec3f& p, float
 // A flat face near p: its unit normal pointing into the solid and p's signed distance to it
 // (positive on the free side).
 struct Face {
-  Vec3f into_solid;
-  float distance;
+  Vec3f into_solid = Vec3f::Zero();
+  float distance = 0.0f;
 };
 
 enum class Near { Nothing, OneFace, Complex };

@@ -241,6 +241,35 @@ bool SolidSet::inside_other_than(const Vec3f& p, const Solid& skip) const {
   return false;
 }
 
+bool SolidSet::stop_at_tank_walls(const Vec3f& from, Vec3f& p, Vec3f& v, float skin) const {
+  bool moved = false;
+  for (const Solid& s : solids_) {
+    if (s.kind != Solid::Kind::Tank) continue;
+    for (int a = 0; a < 3; ++a)
+      for (bool low : {true, false}) {
+        if (!low && s.open_top && a == s.up_axis) continue;
+        const float plane = low ? s.min[a] : s.max[a];
+        // From the inside of this wall's plane to beyond it.
+        const bool crosses = low ? from[a] >= plane && p[a] < plane : from[a] <= plane && p[a] > plane;
+        if (!crosses) continue;
+        const float t = (plane - from[a]) / (p[a] - from[a]);
+        const Vec3f at = from + t * (p - from);
+        // The crossing must lie on the wall's inner face: side walls end at the rim, so a step that
+        // crosses their plane above it goes over.
+        bool on_wall = true;
+        for (int b = 0; b < 3; ++b) on_wall &= b == a || (at[b] >= s.min[b] && at[b] <= s.max[b]);
+        if (!on_wall) continue;
+        Vec3f normal = Vec3f::Zero();
+        normal[a] = low ? 1.0f : -1.0f;
+        p[a] = plane + normal[a] * skin;
+        const float vn = (v - s.velocity_at(p)).dot(normal);
+        if (vn < 0.0f) v -= vn * normal;
+        moved = true;
+      }
+  }
+  return moved;
+}
+
 bool SolidSet::push_out(Vec3f& p, Vec3f& v, float skin) const {
   bool moved = false;
   const Solid* solid = nullptr;

@@ -124,6 +124,13 @@ class SolidSet {
   // its shallowest face that opens into free space, and up to three passes settle the point.
   bool push_out(Vec3f& p, Vec3f& v, float skin) const;
 
+  // A step from `from` to p that crosses a tank's wall or floor below the rim ends inside the tank,
+  // `skin` from the wall, with the velocity into the wall removed (relative to the wall): fast spray
+  // would otherwise pass through a wall thinner than its step and be lost outside. A step that
+  // crosses the wall's plane above an open rim goes over it. Returns true if p was moved. Call
+  // before push_out, which sees only where a step ends.
+  bool stop_at_tank_walls(const Vec3f& from, Vec3f& p, Vec3f& v, float skin) const;
+
   // True when p is inside a solid (or outside a tank's walls): push_out would move it.
   bool inside(const Vec3f& p) const;
 

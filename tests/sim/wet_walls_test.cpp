@@ -149,6 +149,53 @@ TEST(WetWalls, SprayOverTheRimFallsOutsideTheTankNotBackThroughItsWall) {
   EXPECT_NEAR(x.y(), 1.05f - 0.5f * 9.81f * 0.04f, 1e-3f);    // in free fall all along
 }
 
+TEST(WetWalls, AStepLongerThanTheWallIsThickStopsAtItsInnerFace) {
+  // Walls 0.16 m thick; steps of 0.4 m cross them whole. Hand-worked crossings of the tank [0,1]^3.
+  std::vector<Solid> walls = tank().solids();
+  walls[0].wall_thickness = 2 * kH;
+  const SolidSet solids(walls);
+  const float skin = 1e-4f;
+  // Through the x = 1 wall at mid height: ends at its inner face, the velocity into it removed.
+  Vec3f p(1.3f, 0.5f, 0.5f), v(20.0f, -1.0f, 0.0f);
+  EXPECT_TRUE(solids.stop_at_tank_walls(Vec3f(0.9f, 0.5f, 0.5f), p, v, skin));
+  EXPECT_FLOAT_EQ(p.x(), 1.0f - skin);
+  EXPECT_FLOAT_EQ(p.y(), 0.5f);
+  EXPECT_EQ(v, Vec3f(0.0f, -1.0f, 0.0f));
+  // Through the floor: ends on it.
+  p = Vec3f(0.5f, -0.3f, 0.4f), v = Vec3f(0.0f, -10.0f, 1.0f);
+  EXPECT_TRUE(solids.stop_at_tank_walls(Vec3f(0.5f, 0.1f, 0.4f), p, v, skin));
+  EXPECT_FLOAT_EQ(p.y(), skin);
+  EXPECT_EQ(v, Vec3f(0.0f, 0.0f, 1.0f));
+  // Crossing the plane x = 1 above the open rim (at y = 0.98 + 0.2 * 0.12 = 1.004): over the wall.
+  p = Vec3f(1.2f, 1.1f, 0.5f), v = Vec3f(10.0f, 6.0f, 0.0f);
+  EXPECT_FALSE(solids.stop_at_tank_walls(Vec3f(0.95f, 0.98f, 0.5f), p, v, skin));
+  EXPECT_EQ(p, Vec3f(1.2f, 1.1f, 0.5f));
+  // Moving away from a wall, or staying inside: untouched.
+  p = Vec3f(0.5f, 0.5f, 0.5f), v = Vec3f(-1.0f, 0.0f, 0.0f);
+  EXPECT_FALSE(solids.stop_at_tank_walls(Vec3f(0.6f, 0.5f, 0.5f), p, v, skin));
+  EXPECT_EQ(p, Vec3f(0.5f, 0.5f, 0.5f));
+}
+
+TEST(WetWalls, FastSprayAtAWallStaysInTheTank) {
+  // 20 m/s at the x = 0 wall (0.16 m thick): one 0.02 s step would carry it 0.4 m, through the wall and
+  // out of the tank's domain; it stops at the wall and falls along it.
+  std::vector<Solid> walls = tank().solids();
+  walls[0].wall_thickness = 2 * kH;
+  DiffuseSetup s = setup(SolidSet(walls));
+  s.domain = Aabb{Vec3f::Zero(), Vec3f(1.0f, 2.0f, 1.0f)};
+  DiffuseSimulator sim(s);
+  sim.set_particles(placed({{0.2f, 0.8f, 0.5f}}, {{-20.0f, 0.0f, 0.0f}}));
+  const auto fluid = pool();
+  const std::vector<Vec3f> still(fluid.size(), Vec3f::Zero());
+  std::vector<FluidFrame> seq;
+  for (int k = 0; k < 6; ++k) seq.push_back(testing::frame_of(k, k / 50.0, fluid, still));
+  for (int k = 0; k + 1 < 6; ++k) sim.process_frame(seq[size_t(k)], &seq[size_t(k) + 1], [](const DiffuseFrame&, const FrameStats&) {});
+  ASSERT_EQ(sim.particles().size(), 1u) << "lost through the wall";
+  const Vec3f x = sim.particles().positions[0];
+  EXPECT_NEAR(x.x(), 0.0f, 1e-3f);
+  EXPECT_NEAR(x.y(), 0.8f - 0.5f * 9.81f * 0.01f, 1e-3f);  // 0.1 s of free fall along the wall
+}
+
 TEST(WetWalls, TheLayerAgainstAWallIsInteriorAndTheWaterlineFacesUp) {
   const auto fluid = pool();
   const auto state = testing::state_of(fluid, std::vector<Vec3f>(fluid.size(), Vec3f::Zero()));
