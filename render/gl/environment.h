@@ -10,12 +10,8 @@
 
 namespace spume {
 
-inline Vec3f declared_vec3(const KeySpec& k) {
-  return Vec3f(float(k.value[0]), float(k.value[1]), float(k.value[2]));
-}
-
 struct Environment {
-  Vec3f sun_direction = declared_vec3(keys::render::sun_direction).normalized();  // unit, towards the sun
+  Vec3f sun_direction = declared_vec3<Vec3f>(keys::render::sun_direction).normalized();  // unit, towards the sun
   Vec3f sun_irradiance = Vec3f(2.3f, 2.15f, 1.95f);  // on a surface facing the sun; warm white
   float sun_angular_radius = 0.012f;                  // rad: the disc in the sky (about 2x the real sun)
   Vec3f sky_zenith = Vec3f(0.10f, 0.22f, 0.55f);      // radiance straight up
@@ -39,8 +35,8 @@ struct WaterLook {
   float ior = float(keys::render::water_ior.value[0]);  // refractive index (Schlick F0 = 0.02)
   // 1/m per channel, Beer-Lambert. About 5x clear sea water, so tank-sized scenes (0.1-1 m deep) read
   // as water; use the same value for the volume pass's water_sigma.
-  Vec3f absorption = declared_vec3(keys::render::water_absorption);
-  Vec3f deep_color = declared_vec3(keys::render::water_deep_color);  // radiance through an infinite depth
+  Vec3f absorption = declared_vec3<Vec3f>(keys::render::water_absorption);
+  Vec3f deep_color = declared_vec3<Vec3f>(keys::render::water_deep_color);  // radiance through an infinite depth
   float roughness = float(keys::render::water_roughness.value[0]);  // GGX alpha of the sun's highlight
   float refraction = float(keys::render::water_refraction.value[0]);  // 0: straight through; 1: physical bend
   bool scene_reflections = keys::render::water_scene_reflections.value[0] != 0.0;  // false: the sky only

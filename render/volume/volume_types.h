@@ -40,8 +40,7 @@ struct VolumeSettings {
   // 1/m per channel. Material seen through the water surface has its colour multiplied by
   // exp(-water_sigma * distance the eye ray has travelled in water); its opacity is unchanged. The
   // surface pass's absorption (render.water.absorption), so bubbles dim as the water around them does.
-  Vec3f water_sigma = Vec3f(float(keys::render::water_absorption.value[0]), float(keys::render::water_absorption.value[1]),
-                            float(keys::render::water_absorption.value[2]));
+  Vec3f water_sigma = declared_vec3<Vec3f>(keys::render::water_absorption);
   VolumeIntegrator integrator = VolumeIntegrator::Exact;
   ExactMethod exact_method = ExactMethod::ScreenBins;
   float march_step = float(keys::render::march_step.value[0]);  // m; Eq. 9's Delta x. <= 0: half the smallest r_d

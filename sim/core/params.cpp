@@ -260,7 +260,7 @@ std::optional<Vec3f> ParamReader::optional_vec3(const KeySpec& k) const {
 Vec3f ParamReader::vec3(const KeySpec& k) const {
   if (const std::optional<Vec3f> v = optional_vec3(k)) return *v;
   if (!k.has_value()) fail_at(k.name(), missing_message(k));
-  return Vec3f(float(k.value[0]), float(k.value[1]), float(k.value[2]));
+  return declared_vec3<Vec3f>(k);
 }
 
 std::pair<double, double> ParamReader::range(const KeySpec& k, double r, double mass_ratio) const {

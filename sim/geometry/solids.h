@@ -31,8 +31,7 @@ struct Motion {
   Kind kind = Kind::None;
   std::vector<double> times;   // s, Keyframes
   std::vector<Vec3f> offsets;  // m, Keyframes
-  Vec3f axis = Vec3f(float(keys::solids::motion_axis.value[0]), float(keys::solids::motion_axis.value[1]),
-                     float(keys::solids::motion_axis.value[2]));  // unit vector, Sine
+  Vec3f axis = declared_vec3<Vec3f>(keys::solids::motion_axis);  // unit vector, Sine
   float amplitude = float(keys::solids::motion_amplitude.value[0]);  // m, Sine
   float frequency = float(keys::solids::motion_frequency.value[0]);  // Hz, Sine
   float phase = float(keys::solids::motion_phase.value[0]);  // rad, Sine

@@ -62,6 +62,13 @@ struct KeySpec {
 // over a water particle of radius r0, for Scaling::Energy).
 double scaled_default(const KeySpec& k, int i, double r, double mass_ratio = 1.0);
 
+// The declared default of a Vec3 or Colour key as a 3-vector V (Vec3f), for struct defaults; a
+// template so the declarations need no vector type.
+template <class V>
+V declared_vec3(const KeySpec& k) {
+  return V(float(k.value[0]), float(k.value[1]), float(k.value[2]));
+}
+
 // For people: the default ("300 at r0, / sqrt(r/r0)", "0.3 r", "[2, 8]", "required"), the allowed
 // range ("[0, 1e7]", "> 0", "exact, euler_cromer").
 std::string default_description(const KeySpec& k);
