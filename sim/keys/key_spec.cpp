@@ -11,13 +11,21 @@ std::string number_text(double v) {
   return out.str();
 }
 
+// "[a, b]" or "[a, b, c]", written into one stream (GCC 12 warns falsely, -Wrestrict, on "[" + string).
+std::string list_text(const KeySpec& k, int n) {
+  std::ostringstream out;
+  out << "[";
+  for (int i = 0; i < n; ++i) out << (i ? ", " : "") << k.value[size_t(i)];
+  out << "]";
+  return out.str();
+}
+
 std::string values_text(const KeySpec& k) {
   switch (k.type) {
     case KeyType::Range:
-    case KeyType::Size: return "[" + number_text(k.value[0]) + ", " + number_text(k.value[1]) + "]";
+    case KeyType::Size: return list_text(k, 2);
     case KeyType::Vec3:
-    case KeyType::Colour:
-      return "[" + number_text(k.value[0]) + ", " + number_text(k.value[1]) + ", " + number_text(k.value[2]) + "]";
+    case KeyType::Colour: return list_text(k, 3);
     case KeyType::Boolean: return k.value[0] != 0.0 ? "true" : "false";
     default: return number_text(k.value[0]);
   }
