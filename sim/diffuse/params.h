@@ -31,6 +31,7 @@ struct DiffuseParams {
   ClampRange trapped_air = diffuse_default::clamp(keys::diffuse::tau_ta);  // m/s, on v_diff
   ClampRange wave_crest = diffuse_default::clamp(keys::diffuse::tau_wc);   // on the curvature sum
   ClampRange kinetic = diffuse_default::clamp(keys::diffuse::tau_k);       // J, on E_k
+  float crest_support = diffuse_default::of(keys::diffuse::crest_support);  // Eqs. 4-6 radius, in h
   float k_ta = diffuse_default::of(keys::diffuse::k_ta);                   // 1/s
   float k_wc = diffuse_default::of(keys::diffuse::k_wc);                   // 1/s
   float lifetime_min = diffuse_default::of(keys::diffuse::lifetime, 0);    // s

@@ -27,6 +27,24 @@ void for_each_cell_block(const NeighbourGrid& grid, std::initializer_list<std::s
 
 }  // namespace
 
+float crest_curvature(const NeighbourGrid& grid, std::span<const Vec3f> sorted_normal, uint32_t si, const Vec3f& ni,
+                      float radius) {
+  const auto points = grid.sorted_points();
+  const Vec3f xi = points[si];
+  const float inv_radius = 1.0f / radius;
+  float sum = 0.0f;
+  grid.for_each_neighbour_wide(xi, radius, [&](uint32_t j, float d2) {
+    const Vec3f& nj = sorted_normal[j];
+    // Itself and coincident particles have no direction (MODEL.md §8.2); interior ones no normal.
+    if (d2 <= 0.0f || nj.squaredNorm() == 0.0f) return;
+    const Vec3f x_ji = points[j] - xi;
+    if (x_ji.dot(ni) >= 0.0f) return;  // Eq. 6: only neighbours behind the normal (a convex surface)
+    const float distance = std::sqrt(d2);
+    sum += (1.0f - ni.dot(nj)) * paper_weight_at(distance * inv_radius);  // Eq. 4 with W(x_ij, radius)
+  });
+  return sum;
+}
+
 void compute_normals(const NeighbourGrid& grid, float particle_volume, const DiffuseParams& params,
                      const SolidSet* solids, std::vector<Vec3f>& normals) {
   const bool see_solids = solids && !solids->empty();
@@ -94,6 +112,7 @@ void compute_potentials(const NeighbourGrid& grid, const FluidStepState& state, 
   out.kinetic.assign(n, 0.0f);
 
   const float h = grid.support_radius(), h2 = h * h, inv_h = 1.0f / h;
+  const float crest_radius = std::clamp(params.crest_support, 1.0f, 2.0f) * h;
   const auto points = grid.sorted_points();
   const auto order = grid.sorted_to_original();
   // Kinetic energy first: Eq. 8 multiplies by I_k, so particles too slow to emit skip their sums.
@@ -117,19 +136,17 @@ void compute_potentials(const NeighbourGrid& grid, const FluidStepState& state, 
       bool any = false;
       for (uint32_t si = begin; si < end; ++si) any |= out.kinetic[order[si]] > 0.0f;
       if (!any) continue;
-      block.gather(grid, grid.occupied_key(c), {sorted_velocity, sorted_normal});
+      block.gather(grid, grid.occupied_key(c), {sorted_velocity});
       const size_t m = block.size();
       const float *bx = block.x(), *by = block.y(), *bz = block.z();
       const float *vx = block.attribute(0, 0), *vy = block.attribute(0, 1), *vz = block.attribute(0, 2);
-      const float *nx = block.attribute(1, 0), *ny = block.attribute(1, 1), *nz = block.attribute(1, 2);
       for (uint32_t si = begin; si < end; ++si) {
         const uint32_t i = order[si];
         if (out.kinetic[i] <= 0.0f) continue;
         const Vec3f xi = points[si], vi = state.velocities[i], ni = out.normals[i];
         const float surface = ni.squaredNorm() > 0.0f ? 1.0f : 0.0f;
-        float diff[kLanes] = {}, curv[kLanes] = {};
+        float diff[kLanes] = {};
         const float xix = xi.x(), xiy = xi.y(), xiz = xi.z(), vix = vi.x(), viy = vi.y(), viz = vi.z();
-        const float nix = ni.x(), niy = ni.y(), niz = ni.z();
         for (size_t j = 0; j < m; j += kLanes)
           for (size_t l = 0; l < kLanes; ++l) {
             const float dx = bx[j + l] - xix, dy = by[j + l] - xiy, dz = bz[j + l] - xiz;
@@ -144,19 +161,15 @@ void compute_potentials(const NeighbourGrid& grid, const FluidStepState& state, 
             const float wx = vix - vx[j + l], wy = viy - vy[j + l], wz = viz - vz[j + l];
             const float speed = std::sqrt(wx * wx + wy * wy + wz * wz);
             diff[l] += (speed - (wx * ux + wy * uy + wz * uz)) * w;
-            // Eqs. 4-6: convex neighbours (x^_ji . n_i < 0, i.e. x^_ij . n_i > 0) that have a normal.
-            const float nn = nx[j + l] * nx[j + l] + ny[j + l] * ny[j + l] + nz[j + l] * nz[j + l];
-            const float in_front = ux * nix + uy * niy + uz * niz;
-            const float convex = (in_front > 0.0f ? 1.0f : 0.0f) * (nn > 0.0f ? 1.0f : 0.0f);
-            const float dot = nix * nx[j + l] + niy * ny[j + l] + niz * nz[j + l];
-            curv[l] += convex * (1.0f - dot) * w;
           }
-        const float v_diff = lane_sum(diff), curvature = surface * lane_sum(curv);
-        // Eq. 7: only particles moving along their normal form crests.
+        const float v_diff = lane_sum(diff);
+        // Eq. 7 first: only surface particles moving along their normal form crests, and only they
+        // need the wider curvature sum.
         const float speed = vi.norm();
         const bool moving_out = surface > 0.0f && speed > 0.0f && vi.dot(ni) >= 0.6f * speed;
+        const float curvature = moving_out ? crest_curvature(grid, sorted_normal, si, ni, crest_radius) : 0.0f;
         out.trapped_air[i] = clamp_and_scale(v_diff, params.trapped_air.lo, params.trapped_air.hi);
-        out.wave_crest[i] = clamp_and_scale(moving_out ? curvature : 0.0f, params.wave_crest.lo, params.wave_crest.hi);
+        out.wave_crest[i] = clamp_and_scale(curvature, params.wave_crest.lo, params.wave_crest.hi);
       }
     }
   });

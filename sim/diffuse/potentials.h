@@ -1,6 +1,7 @@
 #pragma once
 // Formation potentials of every fluid particle (MODEL.md §1): trapped air (Eq. 2), wave crest
 // (Eqs. 4-7) and kinetic energy, each clamped and scaled to [0, 1] by Eq. 1.
+#include <span>
 #include <vector>
 
 #include "diffuse/fluid_state.h"
@@ -30,6 +31,12 @@ struct FormationPotentials {
 // the water the wall stands for (geometry/solid_coverage.h), so the layer against a wall is interior.
 void compute_normals(const NeighbourGrid& grid, float particle_volume, const DiffuseParams& params,
                      const SolidSet* solids, std::vector<Vec3f>& normals);
+
+// Eq. 5's curvature sum of sorted particle si with unit normal ni: Eqs. 4 and 6 over the surface
+// particles (those with a normal) within `radius` (at most twice the grid's support), weighted by
+// Eq. 3 at that radius. The radius is diffuse.crest_support h, 2 h by default (MODEL.md §8.10).
+float crest_curvature(const NeighbourGrid& grid, std::span<const Vec3f> sorted_normal, uint32_t si, const Vec3f& ni,
+                      float radius);
 
 // Particles with I_k = 0 get I_ta = I_wc = 0 without their neighbour sums: Eq. 8 multiplies by I_k.
 void compute_potentials(const NeighbourGrid& grid, const FluidStepState& state, const DiffuseParams& params,

@@ -92,14 +92,15 @@ uint32_t NeighbourGrid::octant_key_of(const Vec3f& p) const {
   return key * 8 + octant;
 }
 
-std::array<NeighbourGrid::Range, 9> NeighbourGrid::block_ranges(uint32_t key) const {
+template <int reach>
+std::array<NeighbourGrid::Range, (2 * reach + 1) * (2 * reach + 1)> NeighbourGrid::rows_around(uint32_t key) const {
   const uint32_t nx = uint32_t(dims_[0]), ny = uint32_t(dims_[1]), nz = uint32_t(dims_[2]);
   const uint32_t cx = key % nx, cy = (key / nx) % ny, cz = key / (nx * ny);
-  const uint32_t x0 = cx > 0 ? cx - 1 : 0, x1 = std::min(cx + 1, nx - 1);
-  std::array<Range, 9> ranges;
+  const uint32_t x0 = cx >= uint32_t(reach) ? cx - reach : 0, x1 = std::min(cx + reach, nx - 1);
+  std::array<Range, (2 * reach + 1) * (2 * reach + 1)> ranges;
   int r = 0;
-  for (int dz = -1; dz <= 1; ++dz)
-    for (int dy = -1; dy <= 1; ++dy) {
+  for (int dz = -reach; dz <= reach; ++dz)
+    for (int dy = -reach; dy <= reach; ++dy) {
       const int64_t y = int64_t(cy) + dy, z = int64_t(cz) + dz;
       if (y < 0 || z < 0 || y >= ny || z >= nz) {
         ranges[r++] = {0, 0};
@@ -110,5 +111,7 @@ std::array<NeighbourGrid::Range, 9> NeighbourGrid::block_ranges(uint32_t key) co
     }
   return ranges;
 }
+template std::array<NeighbourGrid::Range, 9> NeighbourGrid::rows_around<1>(uint32_t) const;
+template std::array<NeighbourGrid::Range, 25> NeighbourGrid::rows_around<2>(uint32_t) const;
 
 }  // namespace spume

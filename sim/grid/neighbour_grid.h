@@ -48,7 +48,9 @@ class NeighbourGrid {
   uint32_t cell_begin(size_t c) const { return c < occupied_keys_.size() ? cell_start_[occupied_keys_[c]] : uint32_t(size()); }
 
   // The 9 row ranges covering the 3x3x3 cells around `key` (which must not be kOutside).
-  std::array<Range, 9> block_ranges(uint32_t key) const;
+  std::array<Range, 9> block_ranges(uint32_t key) const { return rows_around<1>(key); }
+  // The 25 row ranges covering the 5x5x5 cells around `key`: every point within two support radii.
+  std::array<Range, 25> wide_block_ranges(uint32_t key) const { return rows_around<2>(key); }
 
   // fn(sorted_index, squared_distance) for every point within `radius` (<= support radius) of p.
   template <typename Fn>
@@ -62,8 +64,24 @@ class NeighbourGrid {
         if (d2 <= r2) fn(j, d2);
       }
   }
+  // The same for a radius up to two support radii (the wave-crest sum, MODEL.md §8.10).
+  template <typename Fn>
+  void for_each_neighbour_wide(const Vec3f& p, float radius, Fn&& fn) const {
+    const uint32_t key = key_of(p);
+    if (key == kOutside) return;
+    const float r2 = radius * radius;
+    for (const Range& r : wide_block_ranges(key))
+      for (uint32_t j = r.first; j < r.second; ++j) {
+        const float d2 = (sorted_points_[j] - p).squaredNorm();
+        if (d2 <= r2) fn(j, d2);
+      }
+  }
 
  private:
+  // Row ranges of the (2 reach + 1)^3 cells around `key`, clipped to the grid.
+  template <int reach>
+  std::array<Range, (2 * reach + 1) * (2 * reach + 1)> rows_around(uint32_t key) const;
+
   float support_radius_ = 0.0f;
   float cell_ = 1.0f;
   Vec3f origin_ = Vec3f::Zero();

@@ -26,6 +26,12 @@ inline constexpr KeySpec tau_k{.path = "diffuse.tau_k", .type = Range, .unit = "
                                .scaling = Energy, .lo = 0, .hi = 1e12, .lo_bound = Closed, .hi_bound = Closed,
                                .default_text = "0.7 to 2.5 m/s at r0",
                                .doc = "kinetic-energy clamp [min, max] on 1/2 m v^2"};
+// Eqs. 4-6 summed over this many support radii h: at h a cube's edge reaches about 0.6, never the
+// paper's tau_wc,min = 2; at 2 h edges and corners reach about 4 and faces stay near 0, as the paper
+// says Eq. 5 does (MODEL.md §8.10).
+inline constexpr KeySpec crest_support{.path = "diffuse.crest_support", .value = {2}, .lo = 1, .hi = 2,
+                                       .lo_bound = Closed, .hi_bound = Closed,
+                                       .doc = "radius of the wave-crest sum (Eqs. 4-6), in multiples of h"};
 inline constexpr KeySpec k_ta{.path = "diffuse.k_ta", .unit = "1/s", .value = {300}, .scaling = Rate, .lo = 0,
                               .hi = 1e6, .lo_bound = Closed, .hi_bound = Closed,
                               .doc = "samples per second from trapped air at full potential, Eq. 8"};
@@ -84,7 +90,7 @@ inline constexpr KeySpec max_particles{.path = "diffuse.max_particles", .type = 
                                        .doc = "emission budget: newborns thinned uniformly at random beyond it"};
 
 inline constexpr auto all = std::to_array<const KeySpec*>(
-    {&tau_ta, &tau_wc, &tau_k, &k_ta, &k_wc, &lifetime, &surface_threshold, &surface_neighbour_fraction, &spray_below,
+    {&tau_ta, &tau_wc, &crest_support, &tau_k, &k_ta, &k_wc, &lifetime, &surface_threshold, &surface_neighbour_fraction, &spray_below,
      &bubble_above, &hysteresis, &count_solids, &buoyancy, &drag, &drag_reference_step, &bubble_drag,
      &spray_integrator, &foam_velocity, &substeps, &seed, &max_particles});
 

@@ -27,6 +27,7 @@ DiffuseParams read_diffuse_params(const ParamReader& d, const FluidSequenceInfo&
   p.trapped_air = read_clamp(d, k::tau_ta, r, mass_ratio);
   p.wave_crest = read_clamp(d, k::tau_wc, r, mass_ratio);
   p.kinetic = read_clamp(d, k::tau_k, r, mass_ratio);
+  p.crest_support = float(d.number(k::crest_support));
   p.k_ta = float(d.number(k::k_ta, r));
   p.k_wc = float(d.number(k::k_wc, r));
   const auto [life_lo, life_hi] = d.range(k::lifetime, r);
@@ -64,6 +65,7 @@ Json diffuse_params_to_json(const DiffuseParams& p) {
   j[k::tau_ta.name()] = range(p.trapped_air.lo, p.trapped_air.hi);
   j[k::tau_wc.name()] = range(p.wave_crest.lo, p.wave_crest.hi);
   j[k::tau_k.name()] = range(p.kinetic.lo, p.kinetic.hi);
+  j[k::crest_support.name()] = p.crest_support;
   j[k::k_ta.name()] = p.k_ta;
   j[k::k_wc.name()] = p.k_wc;
   j[k::lifetime.name()] = range(p.lifetime_min, p.lifetime_max);

@@ -40,7 +40,7 @@ TEST(CubicSpline, IntegratesToOneOverItsSupport) {
 DiffuseParams formation_params() {
   DiffuseParams p;
   p.trapped_air = {0.25f, 2.0f};
-  p.wave_crest = {0.5f, 1.5f};
+  p.wave_crest = {0.5f, 2.5f};
   p.kinetic = {0.1f, 0.3f};
   p.surface_threshold = 0.3f;
   p.k_ta = p.k_wc = 1.0f;
@@ -103,8 +103,8 @@ TEST(KineticEnergy, ClampsHalfMassSpeedSquared) {
 
 TEST(WaveCrest, SeparatingPairIsConvexWithHandWorkedCurvature) {
   // Each normal points away from the other: n_0 = (-1,0,0), n_1 = (1,0,0). For particle 0,
-  // x^_10 . n_0 = -1 < 0 (convex), kappa = (1 - n_0.n_1) W = 2 * 0.5 = 1; I_wc = (1 - 0.5) / 1 = 0.5
-  // when it moves along its normal.
+  // x^_10 . n_0 = -1 < 0 (convex), kappa = (1 - n_0.n_1) W(0.5, 2h) = 2 * 0.75 = 1.5 (the crest sum
+  // reaches 2 h, MODEL.md §8.10); I_wc = (1.5 - 0.5) / 2 = 0.5 when it moves along its normal.
   auto p = pair_potentials(Vec3f(-1, 0, 0), Vec3f(1, 0, 0));
   EXPECT_NEAR((p.normals[0] - Vec3f(-1, 0, 0)).norm(), 0.0f, 1e-6);
   EXPECT_NEAR((p.normals[1] - Vec3f(1, 0, 0)).norm(), 0.0f, 1e-6);
@@ -130,8 +130,8 @@ TEST(WaveCrest, InteriorParticlesHaveNoNormal) {
 // spherical void inside a block (concave). Lattice spacing 0.05, h = 0.1, R = 0.3. Every particle
 // moves along its own normal so Eq. 7 passes wherever there is a normal: only Eq. 6 tells the two
 // apart. A smooth sphere's neighbours at distance d differ in normal by d/R, so for the droplet
-// kappa ~ sum (d/R)^2/2 (1 - d/h) over ~15 surface neighbours, about 0.1; the void counts none of
-// them (they lie in front of the particle), only lattice noise.
+// kappa ~ sum (d/R)^2/2 (1 - d/2h) over the surface neighbours within the crest sum's 2 h; the void
+// counts none of them (they lie in front of the particle), only lattice noise.
 float mean_crest_curvature(bool droplet) {
   // Concentric shells of Fibonacci-sphere points (smooth surfaces; a lattice sphere's staircase is
   // full of small convex corners) at spacing 0.05, four shells deep.
@@ -147,6 +147,12 @@ float mean_crest_curvature(bool droplet) {
       points.push_back(centre + rho * Vec3f(ring * std::cos(phi), y, ring * std::sin(phi)));
     }
   }
+  // The void's block goes on beyond the shells (on a lattice), so that its outer faces lie farther than
+  // the crest sum's reach (2 h) from the void: four shells alone would be a hollow ball whose thin wall
+  // is a sheet, convex on its far side.
+  if (!droplet)
+    for (const Vec3f& p : testing::lattice(centre - Vec3f::Constant(0.8f), centre + Vec3f::Constant(0.8f), spacing))
+      if ((p - centre).norm() > radius + 3.5f * spacing) points.push_back(p);
   auto state = testing::state_of(points, std::vector<Vec3f>(points.size(), Vec3f::Zero()));
   NeighbourGrid grid;
   grid.build(state.positions, h);
