@@ -56,28 +56,25 @@ class NeighbourGrid {
   template <typename Fn>
   void for_each_neighbour(const Vec3f& p, float radius, Fn&& fn) const {
     const uint32_t key = key_of(p);
-    if (key == kOutside) return;
-    const float r2 = radius * radius;
-    for (const Range& r : block_ranges(key))
-      for (uint32_t j = r.first; j < r.second; ++j) {
-        const float d2 = (sorted_points_[j] - p).squaredNorm();
-        if (d2 <= r2) fn(j, d2);
-      }
+    if (key != kOutside) visit_within(block_ranges(key), p, radius, fn);
   }
   // The same for a radius up to two support radii (the wave-crest sum, MODEL.md §8.10).
   template <typename Fn>
   void for_each_neighbour_wide(const Vec3f& p, float radius, Fn&& fn) const {
     const uint32_t key = key_of(p);
-    if (key == kOutside) return;
+    if (key != kOutside) visit_within(wide_block_ranges(key), p, radius, fn);
+  }
+
+ private:
+  template <typename Ranges, typename Fn>
+  void visit_within(const Ranges& ranges, const Vec3f& p, float radius, Fn& fn) const {
     const float r2 = radius * radius;
-    for (const Range& r : wide_block_ranges(key))
+    for (const Range& r : ranges)
       for (uint32_t j = r.first; j < r.second; ++j) {
         const float d2 = (sorted_points_[j] - p).squaredNorm();
         if (d2 <= r2) fn(j, d2);
       }
   }
-
- private:
   // Row ranges of the (2 reach + 1)^3 cells around `key`, clipped to the grid.
   template <int reach>
   std::array<Range, (2 * reach + 1) * (2 * reach + 1)> rows_around(uint32_t key) const;
