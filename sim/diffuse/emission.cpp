@@ -1,6 +1,7 @@
 #include "emission.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <numbers>
 
@@ -10,14 +11,25 @@
 #include "diffuse/kernels.h"
 
 namespace spume {
+namespace {
 
-uint32_t round_emission(float expected, const RandomKey& key) {
-  if (!(expected > 0.0f)) return 0;
-  const float capped = std::min(expected, float(kMaxSamplesPerStep));
-  const float whole = std::floor(capped);
+uint64_t saturating_add(uint64_t a, uint64_t b) { return a > UINT64_MAX - b ? UINT64_MAX : a + b; }
+
+}  // namespace
+
+RoundedEmission round_emission_counted(float expected, const RandomKey& key) {
+  if (!(expected > 0.0f)) return {};
+  const double whole = std::floor(double(expected));
   const float u = random_uniform4(key)[0];
-  return uint32_t(whole) + (u < capped - whole ? 1u : 0u);
+  const double rounded = whole + (double(u) < double(expected) - whole ? 1.0 : 0.0);  // +inf stays +inf
+  constexpr double kCap = double(kMaxSamplesPerStep);
+  if (rounded <= kCap) return {uint32_t(rounded), 0};
+  const double beyond = rounded - kCap;
+  constexpr double kMax = 18446744073709549568.0;  // the largest double below 2^64
+  return {kMaxSamplesPerStep, beyond < kMax ? uint64_t(beyond) : uint64_t(kMax)};
 }
+
+uint32_t round_emission(float expected, const RandomKey& key) { return round_emission_counted(expected, key).count; }
 
 float emission_lifetime(const DiffuseParams& params, float i_ta, float i_wc, float i_k) {
   const float rates = params.k_ta + params.k_wc;
@@ -54,17 +66,27 @@ EmissionResult emit_diffuse(const FluidStepState& state, const FormationPotentia
   const size_t n = state.positions.size();
   std::vector<uint32_t>& counts = buffers.counts;
   counts.resize(n);
+  std::atomic<uint64_t> capped{0};
   parallel_for(n, 4096, [&](size_t b, size_t e) {
+    uint64_t capped_here = 0;
     for (size_t i = b; i < e; ++i) {
       const float expected =
           potentials.kinetic[i] * (params.k_ta * potentials.trapped_air[i] + params.k_wc * potentials.wave_crest[i]) * dt;
-      counts[i] = round_emission(expected, {params.seed, RandomPurpose::EmissionRounding, step, state.ids[i], 0});
+      const RoundedEmission r =
+          round_emission_counted(expected, {params.seed, RandomPurpose::EmissionRounding, step, state.ids[i], 0});
+      counts[i] = r.count;
+      capped_here = saturating_add(capped_here, r.capped);
+    }
+    // Integer sums: the total does not depend on how the loop was split. Saturating, like the parts.
+    uint64_t seen = capped.load();
+    while (!capped.compare_exchange_weak(seen, saturating_add(seen, capped_here))) {
     }
   });
   std::vector<uint64_t>& offsets = buffers.offsets;
   offsets.resize(n + 1);
   exclusive_scan(counts.data(), n, offsets.data());
   EmissionResult result;
+  result.capped = capped.load();
   result.requested = offsets[n];
   if (result.requested >= (uint64_t(1) << 32))
     fail("emission: ", result.requested, " particles requested in one step; at most 2^32 - 1 are supported. "

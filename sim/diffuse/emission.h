@@ -11,14 +11,22 @@
 namespace spume {
 
 struct EmissionResult {
-  uint64_t requested = 0;  // particles the potentials asked for this step
+  uint64_t requested = 0;  // particles the potentials asked for this step, within the per-particle cap
   uint64_t emitted = 0;    // particles appended (fewer when the budget binds)
+  uint64_t capped = 0;     // particles beyond the per-particle cap: asked for, never sampled
   bool budget_bound = false;
 };
 
 // Eq. 8 with stochastic rounding: floor(n_d) plus one with probability frac(n_d), so the expected
-// count equals n_d for any dt. At most kMaxSamplesPerStep per fluid particle and step.
-uint32_t round_emission(float expected, const RandomKey& key);
+// count equals n_d for any dt. At most kMaxSamplesPerStep (4,095) per fluid particle and step: a
+// diffuse id holds the sample index in 12 bits (core/frames.h), and a wider index would shorten the
+// parent id or the birth step. What the cap cuts is counted, never silently lost.
+struct RoundedEmission {
+  uint32_t count = 0;   // particles to sample, at most kMaxSamplesPerStep
+  uint64_t capped = 0;  // the rounded n_d beyond the cap (saturates at 2^64 - 1)
+};
+RoundedEmission round_emission_counted(float expected, const RandomKey& key);
+uint32_t round_emission(float expected, const RandomKey& key);  // round_emission_counted(...).count
 
 // Lifetime from the generation potentials (MODEL.md §5): lifetime_min at zero potential, lifetime_max
 // at full potential, linear in P = I_k (k_ta I_ta + k_wc I_wc) / (k_ta + k_wc).

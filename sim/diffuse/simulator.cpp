@@ -150,6 +150,7 @@ void DiffuseSimulator::step(const FluidStepState& state, uint32_t step, float dt
   }
   pending_.generated += emitted.emitted;
   pending_.dropped += emitted.requested - emitted.emitted;
+  pending_.capped = pending_.capped > UINT64_MAX - emitted.capped ? UINT64_MAX : pending_.capped + emitted.capped;
 
   // Compact: survivors in cell order (spatially coherent for the next step), then the newborns.
   StageTimer timer(pending_, Stage::Advect);

@@ -30,6 +30,7 @@ struct FrameStats {
   uint64_t dissolved = 0;   // foam whose lifetime ran out since the previous frame
   uint64_t removed = 0;     // left the domain since the previous frame
   uint64_t dropped = 0;     // candidates the emission budget refused since the previous frame
+  uint64_t capped = 0;      // asked for by Eq. 8 beyond 4,095 per fluid particle and step, never sampled
   std::array<double, size_t(Stage::Count)> stage_ms{};
 };
 

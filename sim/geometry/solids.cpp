@@ -10,6 +10,21 @@
 namespace spume {
 namespace {
 
+// The gap between |x| and the next float up.
+float ulp_of(float x) {
+  x = std::abs(x);
+  return std::nextafter(x, std::numeric_limits<float>::infinity()) - x;
+}
+
+// Float positions are spaced by an ulp of their largest coordinate: 1e-4 r (2 um at r = 21 mm) is
+// below half of it beyond about 1,700 r from the origin (35 m), so a point set to "surface plus skin"
+// would round back onto the surface or an ulp inside. Far out the skin grows to a few ulps of p,
+// which rounding (up to an ulp or two where a box's centre is rounded) cannot undo.
+constexpr float kSkinUlps = 4.0f;
+float representable_skin(const Vec3f& p, float skin) {
+  return std::max(skin, kSkinUlps * ulp_of(p.cwiseAbs().maxCoeff()));
+}
+
 // Signed distance to a box's surface, positive outside, with the outward normal of the nearest face.
 float box_distance(const Vec3f& p, const Vec3f& lo, const Vec3f& hi, Vec3f& normal) {
   const Vec3f centre = 0.5f * (lo + hi), half = 0.5f * (hi - lo);
@@ -242,30 +257,54 @@ bool SolidSet::inside_other_than(const Vec3f& p, const Solid& skip) const {
 }
 
 bool SolidSet::stop_at_tank_walls(const Vec3f& from, Vec3f& p, Vec3f& v, float skin) const {
+  // The step is followed wall by wall: the earliest crossing of any wall's inner face along it stops
+  // it there, the rest of the step slides along that wall (its coordinate held), and the slide is
+  // followed again. Testing each wall once against the whole step misses the second wall of an edge
+  // or a corner: the crossing of the x = 1 plane by a step that leaves through the floor first lies
+  // below the floor, and once the floor has stopped the step nothing sees the x = 1 wall again.
+  // Each stop fixes one coordinate, so a tank stops a step at most three times.
   bool moved = false;
-  for (const Solid& s : solids_) {
-    if (s.kind != Solid::Kind::Tank) continue;
-    for (int a = 0; a < 3; ++a)
-      for (bool low : {true, false}) {
-        if (!low && s.open_top && a == s.up_axis) continue;
-        const float plane = low ? s.min[a] : s.max[a];
-        // From the inside of this wall's plane to beyond it.
-        const bool crosses = low ? from[a] >= plane && p[a] < plane : from[a] <= plane && p[a] > plane;
-        if (!crosses) continue;
-        const float t = (plane - from[a]) / (p[a] - from[a]);
-        const Vec3f at = from + t * (p - from);
-        // The crossing must lie on the wall's inner face: side walls end at the rim, so a step that
-        // crosses their plane above it goes over.
-        bool on_wall = true;
-        for (int b = 0; b < 3; ++b) on_wall &= b == a || (at[b] >= s.min[b] && at[b] <= s.max[b]);
-        if (!on_wall) continue;
-        Vec3f normal = Vec3f::Zero();
-        normal[a] = low ? 1.0f : -1.0f;
-        p[a] = plane + normal[a] * skin;
-        const float vn = (v - s.velocity_at(p)).dot(normal);
-        if (vn < 0.0f) v -= vn * normal;
-        moved = true;
-      }
+  Vec3f start = from;
+  const size_t tanks = size_t(std::count_if(solids_.begin(), solids_.end(),
+                                            [](const Solid& s) { return s.kind == Solid::Kind::Tank; }));
+  for (size_t stop = 0; stop < 3 * tanks; ++stop) {
+    const Solid* hit = nullptr;
+    int hit_axis = 0;
+    bool hit_low = false;
+    float hit_t = std::numeric_limits<float>::infinity();
+    const Vec3f step = p - start;
+    for (const Solid& s : solids_) {
+      if (s.kind != Solid::Kind::Tank) continue;
+      for (int a = 0; a < 3; ++a)
+        for (bool low : {true, false}) {
+          if (!low && s.open_top && a == s.up_axis) continue;
+          const float plane = low ? s.min[a] : s.max[a];
+          // From the inside of this wall's plane to beyond it.
+          const bool crosses = low ? start[a] >= plane && p[a] < plane : start[a] <= plane && p[a] > plane;
+          if (!crosses) continue;
+          const float t = (plane - start[a]) / step[a];
+          if (!(t < hit_t)) continue;
+          const Vec3f at = start + t * step;
+          // The crossing must lie on the wall's inner face: side walls end at the rim, so a step that
+          // crosses their plane above it goes over. The tolerance covers the rounding of `at`.
+          const float tolerance = 4.0f * ulp_of(std::max(at.cwiseAbs().maxCoeff(), step.cwiseAbs().maxCoeff()));
+          bool on_wall = true;
+          for (int b = 0; b < 3; ++b)
+            on_wall &= b == a || (at[b] >= s.min[b] - tolerance && at[b] <= s.max[b] + tolerance);
+          if (!on_wall) continue;
+          hit = &s, hit_axis = a, hit_low = low, hit_t = t;
+        }
+    }
+    if (!hit) break;
+    const int a = hit_axis;
+    const float plane = hit_low ? hit->min[a] : hit->max[a];
+    Vec3f normal = Vec3f::Zero();
+    normal[a] = hit_low ? 1.0f : -1.0f;
+    start += hit_t * step;
+    p[a] = start[a] = plane + normal[a] * representable_skin(start, skin);
+    const float vn = (v - hit->velocity_at(p)).dot(normal);
+    if (vn < 0.0f) v -= vn * normal;
+    moved = true;
   }
   return moved;
 }
@@ -274,7 +313,12 @@ bool SolidSet::push_out(Vec3f& p, Vec3f& v, float skin) const {
   bool moved = false;
   const Solid* solid = nullptr;
   auto push = [&](const Vec3f& normal, float depth) {  // depth > 0: how far p is inside along -normal
-    p += (depth + skin) * normal;
+    const float step = representable_skin(p, skin);
+    p += (depth + step) * normal;
+    // A box or sphere far from the origin: its rounded centre can leave p an ulp inside still. Tank
+    // walls are axis planes, which the skin clears exactly.
+    if (solid->kind != Solid::Kind::Tank)
+      for (float extra = step; contains(*solid, p) && extra < 1e3f * step; extra *= 2.0f) p += extra * normal;
     const float vn = (v - solid->velocity_at(p)).dot(normal);  // relative to a moving wall
     if (vn < 0.0f) v -= vn * normal;
     moved = true;
@@ -350,7 +394,7 @@ bool SolidSet::box_exit(const Solid& s, const Vec3f& p, float skin, Vec3f& norma
     Vec3f n = Vec3f::Zero();
     n[faces[k].axis] = faces[k].sign;
     if (s.rotated()) n = s.orientation * n;
-    const Vec3f exit = p + (faces[k].depth + skin) * n;
+    const Vec3f exit = p + (faces[k].depth + representable_skin(p, skin)) * n;
     // The last face is taken anyway: a box buried in other solids still lets go of the point.
     if (k + 1 == faces.size() || !inside_other_than(exit, s)) {
       normal = n;

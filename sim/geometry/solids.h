@@ -116,7 +116,8 @@ class SolidSet {
   // dynamic tank or a dynamic solid with a motion, non-positive mass or density, bad friction.
   void validate() const;
 
-  // Moves p into free space if it is inside a solid, onto the surface plus `skin`, and removes the
+  // Moves p into free space if it is inside a solid, onto the surface plus `skin` (at least a few
+  // ulps of p's largest coordinate, so that it ends outside however far from the origin), and removes the
   // velocity component pointing into the solid (relative to the solid's velocity at p, see
   // Solid::velocity_at; zero for static solids). Returns true if p was moved. Uses the geometry as
   // stored; a rotated box pushes along its own face normals. Where solids touch, a box is left by
@@ -124,10 +125,12 @@ class SolidSet {
   bool push_out(Vec3f& p, Vec3f& v, float skin) const;
 
   // A step from `from` to p that crosses a tank's wall or floor below the rim ends inside the tank,
-  // `skin` from the wall, with the velocity into the wall removed (relative to the wall): fast spray
-  // would otherwise pass through a wall thinner than its step and be lost outside. A step that
-  // crosses the wall's plane above an open rim goes over it. Returns true if p was moved. Call
-  // before push_out, which sees only where a step ends.
+  // `skin` from the wall (as in push_out), with the velocity into the wall removed (relative to the
+  // wall): fast spray would otherwise pass through a wall thinner than its step and be lost outside.
+  // The step stops at the first wall it meets and slides along it (its motion along the wall kept),
+  // so a step across an edge or into a corner stops at every wall it meets, in the order it meets
+  // them. A step that crosses a wall's plane above an open rim goes over it. Returns true if p was
+  // moved. Call before push_out, which sees only where a step ends.
   bool stop_at_tank_walls(const Vec3f& from, Vec3f& p, Vec3f& v, float skin) const;
 
   // True when p is inside a solid (or outside a tank's walls): push_out would move it.

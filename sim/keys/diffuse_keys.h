@@ -60,7 +60,8 @@ inline constexpr KeySpec hysteresis{.path = "diffuse.hysteresis", .value = {1}, 
                                     .doc = "a particle changes type only past a limit by this many neighbours"};
 inline constexpr KeySpec count_solids{
     .path = "diffuse.count_solids", .type = Boolean, .value = {1},
-    .doc = "a wet wall counts as the fluid it replaces: n / (1 - V_solid / V_h) over the union of solids"};
+    .doc = "classification: a wet wall counts as the fluid it replaces, n / (1 - V_solid / V_h) over the union "
+           "of solids (MODEL.md §8.11); the surface test sees the solids either way (§8.10)"};
 
 // Advection (MODEL.md §4, §8.4-8.6).
 inline constexpr KeySpec buoyancy{.path = "diffuse.buoyancy", .value = {2}, .lo = 0, .hi = 1e3, .lo_bound = Closed,

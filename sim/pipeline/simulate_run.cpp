@@ -60,14 +60,14 @@ std::vector<int> diffuse_frames_to_run(const SimScene& scene, const FluidSource&
 namespace {
 
 void write_stats_header(std::ostream& out) {
-  out << "frame,time,fluid,spray,foam,bubbles,generated,dissolved,removed,dropped";
+  out << "frame,time,fluid,spray,foam,bubbles,generated,dissolved,removed,dropped,capped";
   for (const char* stage : kStageNames) out << ',' << stage << "_ms";
   out << ",io_ms\n";
 }
 
 void write_stats_row(std::ostream& out, const FrameStats& s, double time, double io_ms) {
   out << s.frame << ',' << time << ',' << s.fluid << ',' << s.by_type[0] << ',' << s.by_type[1] << ','
-      << s.by_type[2] << ',' << s.generated << ',' << s.dissolved << ',' << s.removed << ',' << s.dropped;
+      << s.by_type[2] << ',' << s.generated << ',' << s.dissolved << ',' << s.removed << ',' << s.dropped << ',' << s.capped;
   char buffer[32];
   for (double ms : s.stage_ms) std::snprintf(buffer, sizeof buffer, ",%.2f", ms), out << buffer;
   std::snprintf(buffer, sizeof buffer, ",%.2f\n", io_ms);
@@ -126,6 +126,9 @@ std::string stats_rows_up_to(const std::filesystem::path& path, int last) {
   std::ifstream in(path);
   std::string line, kept;
   if (!std::getline(in, line)) return "";
+  std::ostringstream header;
+  write_stats_header(header);
+  if (line + '\n' != header.str()) return "";  // columns of an older version: not mixed with today's rows
   kept = line + '\n';
   while (std::getline(in, line)) {
     const int frame = std::atoi(line.c_str());
@@ -188,7 +191,7 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
     stats_text = header.str();
   }
 
-  bool warned_budget = false;
+  bool warned_budget = false, warned_cap = false;
   int domain_warnings = 0;  // frames that lost more than 1% of what they emitted to the domain
   for (size_t k = resume; k < frames.size(); ++k) {
     std::optional<FluidFrame> next;
@@ -207,6 +210,13 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
                              " binds from frame ", particles.index,
                              ": emission is thinned uniformly at random (unbiased in space); see stats.csv 'dropped'"));
         warned_budget = true;
+      }
+      if (stats.capped > 0 && !warned_cap) {
+        progress.message(str("warning: from frame ", particles.index, " Eq. 8 asks some fluid particles for more than ",
+                             kMaxSamplesPerStep, " new diffuse particles in one step, the most a diffuse id can "
+                             "number; ", stats.capped, " were not emitted in this frame (stats.csv 'capped' counts "
+                             "every frame). More diffuse.substeps or lower diffuse.k_ta / diffuse.k_wc avoid it"));
+        warned_cap = true;
       }
     };
     const FrameStats stats = with_context(str("frame ", frames[k]), [&] {
