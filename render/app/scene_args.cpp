@@ -64,7 +64,7 @@ std::vector<cli::OptionSpec> scene_command_options() {
       {"fps", "F", "with --fluid: frames per second of the fluid files (default: fluid.fps's)"},
       {"tank", "auto|none|X0,Y0,Z0,X1,Y1,Z1",
        "with --fluid: the container, inferred from the fluid (auto), none, or its corners in m; open at the top. "
-       "Without it, a tank is inferred when the fluid was seen stopped at a floor, else none (the log says which)"},
+       "Without it, the inferred tank is used when the fluid was seen stopped at a floor and four walls (the log says)"},
       {"allow-gaps", "", "frames missing from the fluid files are interpolated between their neighbours"},
   };
 }

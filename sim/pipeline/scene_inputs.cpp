@@ -65,13 +65,19 @@ SceneInputs read_scene_inputs(const SimScene& scene, const std::filesystem::path
     if (!c.tank && scene.infer_container == TankInference::Required)
       fail("solids: the tank to infer (\"infer\": true, or --tank auto): ", c.summary,
            "; give the tank's min and max instead, or leave the tank out (--tank none)");
+    // Without --tank, only a closed tank is used: an open side would put a far wall (sim/scene/container.h)
+    // where nothing was seen, and the camera would frame it.
+    const bool use = c.tank && (scene.infer_container == TankInference::Required || c.closed);
     if (scene.infer_container == TankInference::Required)
       in.notes.push_back(c.summary);
-    else if (c.tank)
+    else if (use)
       in.notes.push_back(str(c.summary, "; used since no --tank was given (--tank none runs without it)"));
+    else if (c.tank)
+      in.notes.push_back(str(c.summary, "; not used, since a side is open (--tank auto uses it with that side far away; "
+                                        "or give the tank with --tank X0,Y0,Z0,X1,Y1,Z1)"));
     else
       in.notes.push_back(str(c.summary, "; running without a tank (give one with --tank X0,Y0,Z0,X1,Y1,Z1)"));
-    if (c.tank) {
+    if (use) {
       std::vector<Solid> solids = in.solids.solids();
       solids.push_back(*c.tank);
       in.solids = SolidSet(std::move(solids));

@@ -172,6 +172,7 @@ InferredContainer infer_container(const FluidSurvey& survey, float particle_radi
   // The open top's rim: as high as the fluid ever goes, so its walls hold what the fluid reached.
   tank.max[up_axis] = all.max[up_axis] + particle_radius;
   c.tank = tank;
+  c.closed = std::count(c.wall.begin(), c.wall.end(), true) == 5;
   c.summary = str("container inferred from the fluid: walls ", walls, open.empty() ? "" : str("; open: ", open),
                   "; open top at ", tank.max[up_axis]);
   return c;

@@ -36,6 +36,7 @@ struct InferredContainer {
   // frames since", "no evidence: ...").
   std::array<std::string, 6> why;
   std::optional<Solid> tank;  // set when the floor was found; sides without walls lie far away
+  bool closed = false;        // the floor and all four sides are walls (the tank has no far side)
   std::string summary;        // one line for the log: which walls, where and why; what is open and why
 };
 

@@ -17,8 +17,9 @@ namespace spume {
 enum class FluidSourceKind { Files, Solver };
 
 // Whether a tank is inferred from the fluid files (scene/container.h): never; only when the fluid was
-// seen stopped at a floor (the one-line --fluid run without --tank: without that evidence it runs with
-// no tank and the log says why); or as the scene asks ({"infer": true}: no floor found is an error).
+// seen stopped at a floor and all four sides (the one-line --fluid run without --tank: otherwise it
+// runs with no tank and the log says why); or as the scene asks ({"infer": true}: no floor found is
+// an error, open sides lie far away).
 enum class TankInference { Off, IfEvident, Required };
 
 struct SimScene {

@@ -1,5 +1,5 @@
 // The container of a one-line --fluid run through the spume binary (issue 23, cases 1, 3, 5 and 11;
-// issue 19, empty frames): inferred only where the fluid was seen stopped, and then used by default;
+// issue 19, empty frames): inferred only where the fluid was seen stopped, and used by default when closed;
 // none around a block falling freely; a given tank that leaves the fluid outside is an error; the
 // survey kept beside the outputs is not trusted once edited, and is kept with empty frames in it.
 #include <gtest/gtest.h>
@@ -75,6 +75,20 @@ TEST_F(TankOption, TheOneLineRunUsesTheTankTheFluidShowsAndNoneTurnsItOff) {
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_EQ(r.output.find("container inferred"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("the fluid's bounds over all 16 frames"), std::string::npos) << r.output;
+}
+
+TEST_F(TankOption, AnOpenSideKeepsTheOneLineRunWithoutATankButAutoUsesIt) {
+  const std::string pattern = testing::write_sequence(dir / "piston", testing::column_at_a_piston());
+  CommandResult r = simulate(pattern, "");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string note = line_with(r.output, "container inferred from the fluid: walls ");
+  EXPECT_NE(note.find("open: -x (moves: at x = 0.09 in only"), std::string::npos) << r.output;
+  EXPECT_NE(note.find("; not used, since a side is open"), std::string::npos) << note;
+  EXPECT_NE(r.output.find("the fluid's bounds over all 20 frames"), std::string::npos) << r.output;
+  r = simulate(pattern, "--tank auto");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.output.find("not used"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("the tank with its open top raised"), std::string::npos) << r.output;
 }
 
 TEST_F(TankOption, AutoAndNoneAreWordsInAnyCaseAndAnythingElseNamesTheChoices) {

@@ -48,6 +48,18 @@ inline std::vector<std::vector<Vec3f>> falling_block() {
   return frames;
 }
 
+// A column in the tank [0, 0.6] x [0, 1] x [0, 0.1] whose -x side follows a piston, 20 frames: still
+// for 4 frames at x = 0.08, then oscillating 4 cells either way; the column sinks a cell every 2
+// frames. Walls: +x, -y, -z, +z; -x (the piston) and +y open.
+inline std::vector<std::vector<Vec3f>> column_at_a_piston() {
+  std::vector<std::vector<Vec3f>> frames;
+  for (int k = 0; k < 20; ++k) {
+    const int shift = k < 4 ? 0 : int(std::lround(4.0 * std::sin(0.8 * (k - 4))));
+    frames.push_back(cells(Vec3f(0.02f * float(shift) + 0.08f, 0, 0), 26 - shift, 20 - k / 2, 5));
+  }
+  return frames;
+}
+
 // Frame `first + k` of `frames` as gzipped BGEO files `dir/fluid_<n>.bgeo`, with ids (lattice order)
 // and velocities: the difference to the next frame where it holds as many particles, else zero.
 // Returns the pattern.

@@ -42,6 +42,7 @@ TEST(InferContainer, FindsEveryWallOfACollapsingColumnWithinR) {
   EXPECT_NEAR(c.tank->max.x(), hi.x(), 0.1f * kSeqRadius);
   EXPECT_NEAR(c.tank->max.y(), lo.y() + 40.0f * kSeqRadius, 0.1f * kSeqRadius);
   EXPECT_TRUE(c.tank->open_top);
+  EXPECT_TRUE(c.closed);
   // Why: the front arrived at +x in frame 8 (the 8th frame: 10 + 3 * 7 cells reach 30); the others held.
   EXPECT_NE(c.why[PlusX].find("reached in frame 8"), std::string::npos) << c.why[PlusX];
   EXPECT_NE(c.why[MinusX].find("from frame 1"), std::string::npos) << c.why[MinusX];
@@ -106,18 +107,15 @@ TEST(InferContainer, ASideReachedOnlyInTheLastFramesIsWeakEvidenceNotAWall) {
 }
 
 TEST(InferContainer, AMovingPistonIsLeftOpen) {
-  // The column's -x side follows a piston: still for 4 frames, then oscillating 4 cells either way.
-  std::vector<std::vector<Vec3f>> frames;
-  for (int k = 0; k < 20; ++k) {
-    const int shift = k < 4 ? 0 : int(std::lround(4.0 * std::sin(0.8 * (k - 4))));
-    frames.push_back(testing::cells(Vec3f(0.02f * float(shift) + 0.08f, 0, 0), 26 - shift, 20 - k / 2, 5));
-  }
+  const std::vector<std::vector<Vec3f>> frames = testing::column_at_a_piston();
   const InferredContainer c = infer_container(survey_of(frames), kSeqRadius, kY);
   ASSERT_TRUE(c.tank) << c.summary;
   EXPECT_FALSE(c.wall[MinusX]) << c.summary;
   EXPECT_TRUE(c.wall[PlusX]) << c.summary;  // the far wall: 0.08 + 26 cells = 0.6
   EXPECT_NEAR(c.plane[PlusX], 0.6f, 0.1f * kSeqRadius);
   EXPECT_EQ(c.why[MinusX].rfind("moves", 0), 0u) << c.why[MinusX];
+  EXPECT_FALSE(c.closed);  // the tank's -x wall lies far away
+  EXPECT_LT(c.tank->min.x(), -1.0f);
 }
 
 TEST(InferContainer, EmptyFramesChangeNothing) {
