@@ -68,7 +68,7 @@ int farm_chunks(const cli::ParsedArgs& args) {
 std::vector<std::string> scene_arguments(const cli::ParsedArgs& args, const SceneSetup& setup) {
   std::vector<std::string> argv;
   if (!args.positional.empty()) argv.push_back(fs::absolute(args.positional[0]).lexically_normal().string());
-  for (const char* option : {"fluid", "radius", "fps", "threads"})
+  for (const char* option : {"fluid", "radius", "fps", "tank", "threads"})
     if (auto value = args.value(option)) argv.insert(argv.end(), {str("--", option), *value});
   argv.insert(argv.end(), {"--out", fs::absolute(setup.out_root).lexically_normal().string()});
   for (const std::string& set : args.all("set")) argv.insert(argv.end(), {"--set", set});

@@ -1,5 +1,8 @@
 #include "scene_args.h"
 
+#include <algorithm>
+#include <cctype>
+
 #include "core/error.h"
 #include "core/parallel.h"
 #include "keys/scene_keys.h"
@@ -16,19 +19,36 @@ std::string name_from_pattern(const std::string& pattern) {
   return stem.empty() ? "fluid" : stem;
 }
 
-// --tank auto, or the six corner coordinates "x0,y0,z0,x1,y1,z1" of an open tank.
-Json tank_from_option(const std::string& text) {
-  if (text == "auto") return {{"type", "tank"}, {"infer", true}};
+// What --tank asks for: a tank inferred from the fluid, none, or one given by its corners.
+struct TankOption {
+  enum class Kind { Auto, None, Corners } kind = Kind::Auto;
+  Json solid;  // Auto, Corners: the scene's "solids" entry
+};
+
+// --tank auto, none (either in any case, spaces around ignored), or the six corner coordinates
+// "x0,y0,z0,x1,y1,z1" of an open tank.
+TankOption tank_from_option(const std::string& text) {
+  const size_t b = text.find_first_not_of(" \t"), e = text.find_last_not_of(" \t");
+  std::string word = b == std::string::npos ? "" : text.substr(b, e - b + 1);
+  std::transform(word.begin(), word.end(), word.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (word == "auto") return {TankOption::Kind::Auto, {{"type", "tank"}, {"infer", true}}};
+  if (word == "none") return {TankOption::Kind::None, nullptr};
+  const std::string expected = str("--tank \"", text, "\": expected auto, none or six numbers x0,y0,z0,x1,y1,z1 (the tank's "
+                                   "corners in m)");
   std::vector<double> v;
   size_t start = 0;
   while (start <= text.size()) {
     const size_t comma = std::min(text.find(',', start), text.size());
-    v.push_back(cli::parse_double(text.substr(start, comma - start), "--tank"));
+    const std::string part = text.substr(start, comma - start);
+    try {
+      v.push_back(cli::parse_double(part, "--tank"));
+    } catch (const cli::UsageError&) {
+      cli::usage_fail(expected, "; \"", part, "\" is not a number");
+    }
     start = comma + 1;
   }
-  if (v.size() != 6)
-    cli::usage_fail("--tank \"", text, "\": expected auto or six numbers x0,y0,z0,x1,y1,z1 (m), found ", v.size());
-  return {{"type", "tank"}, {"min", {v[0], v[1], v[2]}}, {"max", {v[3], v[4], v[5]}}};
+  if (v.size() != 6) cli::usage_fail(expected, ", found ", v.size(), v.size() == 1 ? " number" : " numbers");
+  return {TankOption::Kind::Corners, {{"type", "tank"}, {"min", {v[0], v[1], v[2]}}, {"max", {v[3], v[4], v[5]}}}};
 }
 
 }  // namespace
@@ -42,8 +62,9 @@ std::vector<cli::OptionSpec> scene_command_options() {
       {"fluid", "PATTERN", "fluid files with every default, no scene file (e.g. 'cache/ParticleData_Fluid_%d.bgeo')"},
       {"radius", "R", "with --fluid: the fluid particle radius in m"},
       {"fps", "F", "with --fluid: frames per second of the fluid files (default: fluid.fps's)"},
-      {"tank", "auto|X0,Y0,Z0,X1,Y1,Z1",
-       "with --fluid: the container, inferred from the fluid (auto) or its corners in m; open at the top"},
+      {"tank", "auto|none|X0,Y0,Z0,X1,Y1,Z1",
+       "with --fluid: the container, inferred from the fluid (auto), none, or its corners in m; open at the top. "
+       "Without it, the inferred tank is used when the fluid was seen stopped at a floor and four walls (the log says)"},
       {"allow-gaps", "", "frames missing from the fluid files are interpolated between their neighbours"},
   };
 }
@@ -69,7 +90,10 @@ SceneSetup load_scene_setup(const cli::ParsedArgs& args, const std::vector<std::
                       {"files", *args.value("fluid")},
                       {"radius", cli::parse_double(*args.value("radius"), "--radius")},
                       {"fps", args.has("fps") ? cli::parse_double(*args.value("fps"), "--fps") : keys::fluid::fps.value[0]}}}};
-      if (auto tank = args.value("tank")) scene["solids"] = Json::array({tank_from_option(*tank)});
+      if (auto tank = args.value("tank")) {
+        const TankOption option = tank_from_option(*tank);
+        if (option.kind != TankOption::Kind::None) scene["solids"] = Json::array({option.solid});
+      }
       return scene_from_json(std::move(scene), "--fluid", ".", "fluid", overrides);
     }
     if (args.has("radius") || args.has("fps") || args.has("tank"))
@@ -80,6 +104,11 @@ SceneSetup load_scene_setup(const cli::ParsedArgs& args, const std::vector<std::
 
   SceneSetup setup;
   setup.sim = read_sim_scene(loaded.root, loaded.dir, loaded.default_name);
+  // The one-line run of fluid files without --tank (nor solids set with --set): the container the
+  // fluid shows, when it shows one (scene/container.h); the log says which walls and why, or why none.
+  if (args.has("fluid") && !args.has("tank") && setup.sim.source == FluidSourceKind::Files &&
+      setup.sim.solids.empty() && setup.sim.infer_container == TankInference::Off)
+    setup.sim.infer_container = TankInference::IfEvident;
   setup.render = read_render_settings(loaded.root.child("render"), setup.sim.fluid.particle_radius);
   loaded.root.reject_unknown_keys();
   setup.render_keys = loaded.root.raw("render");

@@ -13,36 +13,69 @@
 #include "core/progress.h"
 #include "io/frame_pattern.h"
 #include "io/particle_file.h"
+#include "io/stage_record.h"
 
 namespace spume {
 namespace {
 
 using Json = nlohmann::json;
 
-constexpr int kSurveyVersion = 2;  // bump when what a frame's entry holds changes
+constexpr int kSurveyVersion = 3;  // bump when what a frame's entry holds changes
 
-Json to_json(const FrameSurvey& f) {
-  return {{"frame", f.frame},
-          {"size", f.file.size},
-          {"mtime_ns", f.file.mtime_ns},
-          {"crc", f.file.crc},
-          {"particles", f.particles},
-          {"min", {f.bounds.min.x(), f.bounds.min.y(), f.bounds.min.z()}},
-          {"max", {f.bounds.max.x(), f.bounds.max.y(), f.bounds.max.z()}},
-          {"sheet", f.sheet}};
+// An entry's digest covers its file identity and what was measured in it: an entry edited by hand
+// (or by a tool that kept the file's identity) no longer matches and its frame is surveyed again.
+std::string entry_digest(Json entry) {
+  entry.erase("digest");
+  return record_digest(entry);
 }
 
+Json to_json(const FrameSurvey& f) {
+  Json j = {{"frame", f.frame},
+            {"size", f.file.size},
+            {"mtime_ns", f.file.mtime_ns},
+            {"crc", f.file.crc},
+            {"particles", f.particles}};
+  // An empty frame has no bounds and no sheets (its box is inverted: infinities, not JSON numbers).
+  if (f.particles > 0) {
+    j["min"] = {f.bounds.min.x(), f.bounds.min.y(), f.bounds.min.z()};
+    j["max"] = {f.bounds.max.x(), f.bounds.max.y(), f.bounds.max.z()};
+    j["sheet"] = f.sheet;
+    j["centroid"] = {f.centroid.x(), f.centroid.y(), f.centroid.z()};
+  }
+  j["digest"] = entry_digest(j);
+  return j;
+}
+
+// Throws when the entry is malformed or does not match its digest.
 FrameSurvey frame_from_json(const Json& j) {
+  if (j.at("digest").get<std::string>() != entry_digest(j)) throw std::runtime_error("digest");
   FrameSurvey f;
   f.frame = j.at("frame").get<int>();
   f.file.size = j.at("size").get<uint64_t>();
   f.file.mtime_ns = j.at("mtime_ns").get<int64_t>();
   f.file.crc = j.at("crc").get<uint32_t>();
   f.particles = j.at("particles").get<uint64_t>();
-  for (int a = 0; a < 3; ++a) f.bounds.min[a] = j.at("min").at(size_t(a)).get<float>();
-  for (int a = 0; a < 3; ++a) f.bounds.max[a] = j.at("max").at(size_t(a)).get<float>();
-  f.sheet = j.at("sheet").get<std::array<float, 6>>();
+  if (f.particles > 0) {
+    for (int a = 0; a < 3; ++a) f.bounds.min[a] = j.at("min").at(size_t(a)).get<float>();
+    for (int a = 0; a < 3; ++a) f.bounds.max[a] = j.at("max").at(size_t(a)).get<float>();
+    f.sheet = j.at("sheet").get<std::array<float, 6>>();
+    for (int a = 0; a < 3; ++a) f.centroid[a] = j.at("centroid").at(size_t(a)).get<float>();
+  } else {
+    f.sheet.fill(NAN);
+    f.centroid = Vec3f::Constant(NAN);
+  }
   return f;
+}
+
+Json spacing_json(const std::string& pattern, float spacing, int frame, const FileIdentity& file) {
+  Json j = {{"pattern", pattern},
+            {"spacing", spacing},
+            {"spacing_frame", frame},
+            {"spacing_size", file.size},
+            {"spacing_mtime_ns", file.mtime_ns},
+            {"spacing_crc", file.crc}};
+  j["spacing_digest"] = record_digest(j);
+  return j;
 }
 
 // What an earlier survey of the same pattern and layer recorded, by frame; nothing when the file is
@@ -52,6 +85,7 @@ struct Kept {
   float spacing = 0.0f;
   int spacing_frame = -1;
   FileIdentity spacing_file;
+  size_t rejected = 0;  // entries that were malformed or did not match their digest
 };
 
 Kept read_kept(const std::filesystem::path& keep, const std::string& pattern) {
@@ -62,11 +96,24 @@ Kept read_kept(const std::filesystem::path& keep, const std::string& pattern) {
   try {
     const Json j = Json::parse(in);
     if (j.at("pattern").get<std::string>() != pattern || j.at("version").get<int>() != kSurveyVersion) return kept;
-    for (const Json& f : j.at("frames")) kept.frames.push_back(frame_from_json(f));
-    kept.spacing = j.at("spacing").get<float>();
-    kept.spacing_frame = j.at("spacing_frame").get<int>();
-    kept.spacing_file = {j.at("spacing_size").get<uint64_t>(), j.at("spacing_mtime_ns").get<int64_t>(),
-                         j.at("spacing_crc").get<uint32_t>()};
+    for (const Json& f : j.at("frames")) {
+      try {
+        kept.frames.push_back(frame_from_json(f));
+      } catch (const std::exception&) {
+        ++kept.rejected;  // this frame is surveyed again; the others stay good
+      }
+    }
+    const int spacing_frame = j.at("spacing_frame").get<int>();
+    const FileIdentity spacing_file{j.at("spacing_size").get<uint64_t>(), j.at("spacing_mtime_ns").get<int64_t>(),
+                                    j.at("spacing_crc").get<uint32_t>()};
+    const float spacing = j.at("spacing").get<float>();
+    if (spacing_json(pattern, spacing, spacing_frame, spacing_file)["spacing_digest"] == j.at("spacing_digest")) {
+      kept.spacing = spacing;
+      kept.spacing_frame = spacing_frame;
+      kept.spacing_file = spacing_file;
+    } else {
+      ++kept.rejected;
+    }
   } catch (const std::exception&) {
     return Kept{};
   }
@@ -88,8 +135,10 @@ FrameSurvey survey_positions(const std::vector<Vec3f>& positions) {
   constexpr size_t kSheetRank = 4;
   std::array<std::array<float, kSheetRank>, 6> outer;
   for (size_t side = 0; side < 6; ++side) outer[side].fill(side % 2 == 0 ? INFINITY : -INFINITY);
+  double sum[3] = {0.0, 0.0, 0.0};
   for (const Vec3f& p : positions) {
     f.bounds.extend(p);
+    for (int a = 0; a < 3; ++a) sum[a] += double(p[a]);
     for (size_t side = 0; side < 6; ++side) {
       // Sides are compared as "more outward is smaller": negate the high sides.
       const float v = side % 2 == 0 ? p[int(side / 2)] : -p[int(side / 2)];
@@ -103,8 +152,9 @@ FrameSurvey survey_positions(const std::vector<Vec3f>& positions) {
   }
   for (size_t side = 0; side < 6; ++side) {
     const size_t rank = std::min<size_t>(kSheetRank, std::max<size_t>(positions.size(), 1)) - 1;
-    f.sheet[side] = positions.empty() ? 0.0f : outer[side][rank];
+    f.sheet[side] = positions.empty() ? NAN : outer[side][rank];
   }
+  for (int a = 0; a < 3; ++a) f.centroid[a] = positions.empty() ? NAN : float(sum[a] / double(positions.size()));
   return f;
 }
 
@@ -133,6 +183,10 @@ FluidSurvey survey_fluid_files(const std::string& pattern, const std::vector<int
   survey.pattern = pattern;
   survey.frames.resize(frames.size());
   const Kept kept = read_kept(keep, pattern);
+  if (kept.rejected > 0)
+    survey.notes.push_back(str(keep.string(), ": ", kept.rejected, kept.rejected > 1 ? " entries" : " entry",
+                               " did not match ", kept.rejected > 1 ? "their" : "its",
+                               " digest (edited or damaged); surveyed again from the fluid files"));
 
   std::vector<size_t> todo;
   for (size_t k = 0; k < frames.size(); ++k) {
@@ -148,9 +202,14 @@ FluidSurvey survey_fluid_files(const std::string& pattern, const std::vector<int
       todo.push_back(k);
     }
   }
-  const FileIdentity first_file = survey.frames.front().file;
-  const bool spacing_known = kept.spacing_frame == frames.front() && kept.spacing_file == first_file;
-  if (todo.empty() && spacing_known) {
+  // The spacing is measured in the first frame holding two particles or more (a sequence may start empty).
+  auto spacing_index = [&] {
+    for (size_t k = 0; k < survey.frames.size(); ++k)
+      if (survey.frames[k].particles >= 2) return k;
+    return size_t(0);
+  };
+  auto spacing_known = [&](size_t k) { return kept.spacing_frame == frames[k] && kept.spacing_file == survey.frames[k].file; };
+  if (todo.empty() && spacing_known(spacing_index())) {
     survey.spacing = kept.spacing;
     return survey;
   }
@@ -177,22 +236,18 @@ FluidSurvey survey_fluid_files(const std::string& pattern, const std::vector<int
   for (const std::string& e : errors)
     if (!e.empty()) throw Error(e);
   progress.finish(str(todo.size(), " frames read"));
-  if (spacing_known) {
+  const size_t spacing_at = spacing_index();
+  if (spacing_known(spacing_at)) {
     survey.spacing = kept.spacing;
   } else {
-    const FluidFrame first = read_fluid_file(expand_frame_pattern(pattern, frames.front()));
+    const FluidFrame first = read_fluid_file(expand_frame_pattern(pattern, frames[spacing_at]));
     survey.spacing = median_spacing(first.positions);
   }
 
   if (!keep.empty()) {
-    Json j = {{"pattern", pattern},
-              {"version", kSurveyVersion},
-              {"spacing", survey.spacing},
-              {"spacing_frame", frames.front()},
-              {"spacing_size", first_file.size},
-              {"spacing_mtime_ns", first_file.mtime_ns},
-              {"spacing_crc", first_file.crc},
-              {"frames", Json::array()}};
+    Json j = spacing_json(pattern, survey.spacing, frames[spacing_at], survey.frames[spacing_at].file);
+    j["version"] = kSurveyVersion;
+    j["frames"] = Json::array();
     // Keep what was known of frames outside this range too, so other ranges stay cheap.
     std::vector<FrameSurvey> all = survey.frames;
     for (const FrameSurvey& f : kept.frames)

@@ -3,7 +3,9 @@
 // its particle count and bounds, and how many particles press against each side of those bounds.
 // The whole sequence's domain and camera, the container inferred from it, the inputs' part of the
 // caches' fingerprints and the spacing check all read this one pass. It is kept beside the outputs
-// (OUT/<scene>/fluid_survey.json): a rerun surveys again only the files whose identity changed.
+// (OUT/<scene>/fluid_survey.json): a rerun surveys again only the files whose identity changed. Each
+// entry carries a digest of its identity and measures; an entry that does not match it (edited by
+// hand) is not trusted: its frame is surveyed again, and the survey's notes say so.
 #include <array>
 #include <filesystem>
 #include <optional>
@@ -20,18 +22,22 @@ struct FrameSurvey {
   FileIdentity file;
   uint64_t particles = 0;
   Aabb bounds;
-  // Per side (-x, +x, -y, +y, -z, +z), the coordinate of the 4th outermost particle: where the fluid
-  // presses against something flat, a sheet sits there; a few stray particles do not move it.
+  // Per side (-x, +x, -y, +y, -z, +z), the coordinate of the 4th outermost particle (with fewer
+  // particles, the innermost; NaN in an empty frame): where the fluid presses against something
+  // flat, a sheet sits there; a few stray particles do not move it.
   std::array<float, 6> sheet{};
+  Vec3f centroid = Vec3f::Zero();  // the particles' mean position (NaN in an empty frame)
+  bool has_sheet() const { return particles >= 4; }  // a sheet of 4 particles, not strays
 };
 
 struct FluidSurvey {
   std::string pattern;
   std::vector<FrameSurvey> frames;  // in frame order
-  // Median distance from a particle to its nearest neighbour in the first frame (a sample of up to
-  // 512 particles): the cache's particle spacing, to check the radius the user gave against.
+  // Median distance from a particle to its nearest neighbour in the first frame holding two or more
+  // (a sample of up to 512 particles): the cache's particle spacing, to check the radius against.
   float spacing = 0.0f;
-  Aabb bounds() const;            // union over every frame
+  Aabb bounds() const;            // union over every frame (empty frames add nothing)
+  std::vector<std::string> notes;  // what the log should say (kept entries that were not trusted)
 };
 
 // Surveys `frames` of `pattern` (they must exist), reusing what `keep` records for files whose
@@ -40,7 +46,7 @@ struct FluidSurvey {
 FluidSurvey survey_fluid_files(const std::string& pattern, const std::vector<int>& frames,
                                const std::filesystem::path& keep, bool quiet);
 
-// One frame's entry from particle positions (exposed for tests).
+// One frame's entry from particle positions (exposed for tests); no particles: empty bounds, NaN sheets.
 FrameSurvey survey_positions(const std::vector<Vec3f>& positions);
 // Median nearest-neighbour distance over up to `samples` evenly strided particles.
 float median_spacing(const std::vector<Vec3f>& positions, size_t samples = 512);

@@ -117,7 +117,7 @@ inline constexpr KeySpec list{.path = "solids", .type = List, .default_text = "n
 inline constexpr KeySpec type{.path = "solids[].type", .type = Choice, .choices = "tank|box|sphere",
                               .doc = "a hollow box, a solid box or a solid sphere"};
 inline constexpr KeySpec infer{.path = "solids[].infer", .type = Boolean, .value = {0},
-                               .doc = "tank, fluid files only: the walls the fluid presses on, found from it"};
+                               .doc = "tank, fluid files only: the walls the fluid was seen stopped at, found from it"};
 inline constexpr KeySpec min{.path = "solids[].min", .type = Vec3, .unit = "m", .lo = -1e6, .hi = 1e6,
                              .lo_bound = Closed, .hi_bound = Closed, .default_text = "required (tank, box)",
                              .doc = "lower corner"};

@@ -6,6 +6,7 @@
 #include "io/frame_pattern.h"
 #include "pipeline/fluid_stage.h"
 #include "scene/container.h"
+#include "scene/tank_fit.h"
 #include "io/fluid_source.h"
 
 namespace spume {
@@ -48,19 +49,39 @@ SceneInputs read_scene_inputs(const SimScene& scene, const std::filesystem::path
   std::error_code ec;
   std::filesystem::create_directories(scene_out, ec);
   in.survey = survey_fluid_files(pattern, frames, fluid_survey_path(scene_out), quiet);
+  in.notes = in.survey.notes;
 
   if (const std::vector<int> missing = missing_frames(frames); !missing.empty() && scene.allow_gaps)
     in.notes.push_back(str("fluid.allow_gaps: ", missing.size(), " missing fluid frame", missing.size() > 1 ? "s" : "",
                            " (the first is ", missing.front(), ") interpolated between the frames on either side"));
   in.solids = scene.solids;
-  if (scene.infer_container) {
+  if (!solver) {
+    // Before a tank is inferred: only the tanks the scene gives are checked.
+    const std::string warning = check_tanks_hold_fluid(in.survey, in.solids, scene.fluid.particle_radius);
+    if (!warning.empty()) in.notes.push_back(warning);
+  }
+  if (scene.infer_container != TankInference::Off) {
     const InferredContainer c = infer_container(in.survey, scene.fluid.particle_radius, up_axis(scene.gravity));
-    in.notes.push_back(c.summary);
-    if (!c.tank)
-      fail("solids: the tank to infer (\"infer\": true): ", c.summary, "; give the tank's min and max instead");
-    std::vector<Solid> solids = in.solids.solids();
-    solids.push_back(*c.tank);
-    in.solids = SolidSet(std::move(solids));
+    if (!c.tank && scene.infer_container == TankInference::Required)
+      fail("solids: the tank to infer (\"infer\": true, or --tank auto): ", c.summary,
+           "; give the tank's min and max instead, or leave the tank out (--tank none)");
+    // Without --tank, only a closed tank is used: an open side would put a far wall (sim/scene/container.h)
+    // where nothing was seen, and the camera would frame it.
+    const bool use = c.tank && (scene.infer_container == TankInference::Required || c.closed);
+    if (scene.infer_container == TankInference::Required)
+      in.notes.push_back(c.summary);
+    else if (use)
+      in.notes.push_back(str(c.summary, "; used since no --tank was given (--tank none runs without it)"));
+    else if (c.tank)
+      in.notes.push_back(str(c.summary, "; not used, since a side is open (--tank auto uses it with that side far away; "
+                                        "or give the tank with --tank X0,Y0,Z0,X1,Y1,Z1)"));
+    else
+      in.notes.push_back(str(c.summary, "; running without a tank (give one with --tank X0,Y0,Z0,X1,Y1,Z1)"));
+    if (use) {
+      std::vector<Solid> solids = in.solids.solids();
+      solids.push_back(*c.tank);
+      in.solids = SolidSet(std::move(solids));
+    }
   }
   {
     // For the diffuse material, a tank's walls are 2 h thick: spray that leaves over the rim and

@@ -63,8 +63,10 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
       root.fail_at("domain", "min must be below max on every axis");
   }
 
-  scene.solids = scene.source == FluidSourceKind::Files ? read_solids(root, scene.gravity, scene.infer_container)
+  bool infer_tank = false;
+  scene.solids = scene.source == FluidSourceKind::Files ? read_solids(root, scene.gravity, infer_tank)
                                                         : read_solids(root, scene.gravity);
+  if (infer_tank) scene.infer_container = TankInference::Required;
   scene.diffuse = read_diffuse_params(root.child("diffuse"), scene.fluid, scene.gravity);
   const ParamReader output = root.child("output");
   scene.write_bgeo = output.boolean(k::output::bgeo);

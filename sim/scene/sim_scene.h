@@ -16,6 +16,12 @@ namespace spume {
 
 enum class FluidSourceKind { Files, Solver };
 
+// Whether a tank is inferred from the fluid files (scene/container.h): never; only when the fluid was
+// seen stopped at a floor and all four sides (the one-line --fluid run without --tank: otherwise it
+// runs with no tank and the log says why); or as the scene asks ({"infer": true}: no floor found is
+// an error, open sides lie far away).
+enum class TankInference { Off, IfEvident, Required };
+
 struct SimScene {
   std::string name;                     // output folder name: OUT/<name>/
   FluidSourceKind source = FluidSourceKind::Files;
@@ -25,7 +31,7 @@ struct SimScene {
   std::optional<std::pair<int, int>> frames;  // inclusive frame range to use, if limited
   Vec3f gravity = Vec3f(0.0f, -9.81f, 0.0f);  // m/s^2
   SolidSet solids;
-  bool infer_container = false;         // Files: a tank {"infer": true}, found from the fluid (scene/container.h)
+  TankInference infer_container = TankInference::Off;  // Files: a tank found from the fluid
   Aabb domain;                          // empty: derived from the tank or every fluid frame's bounds
   DiffuseParams diffuse;
   bool write_bgeo = false;              // also write diffuse frames as BGEO for Houdini/Blender

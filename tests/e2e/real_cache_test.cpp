@@ -1,5 +1,6 @@
 // A moving cache from "another simulator", as a user brings it: spume's own dam break exported as
-// BGEO and post-processed with --fluid alone, with the tank given, and with the tank inferred.
+// BGEO and post-processed with --fluid alone (no tank), with the tank given, and with the tank
+// inferred (asked for, and by default).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -72,7 +73,7 @@ CommandResult RealCache::solved;
 
 TEST_F(RealCache, TheMovingCacheAloneKeepsWhatItEmits) {
   ASSERT_EQ(solved.status, 0) << solved.output;
-  const CommandResult r = run_spume("simulate --fluid '" + bgeo_pattern() + "' --radius 0.04 --fps 25 --out " +
+  const CommandResult r = run_spume("simulate --fluid '" + bgeo_pattern() + "' --radius 0.04 --fps 25 --tank none --out " +
                                     (dir / "alone").string());
   ASSERT_EQ(r.status, 0) << r.output;
   // The domain holds every frame's fluid, not the first frame's.
@@ -100,13 +101,11 @@ TEST_F(RealCache, WithTheTankGivenItMatchesTheSolverScenesDiffuseStage) {
   EXPECT_GT(compared, 20);  // most frames hold diffuse particles
 }
 
-TEST_F(RealCache, TheTankIsInferredFromTheFluid) {
-  ASSERT_EQ(solved.status, 0) << solved.output;
-  const CommandResult r = run_spume("simulate --fluid '" + bgeo_pattern() + "' --radius 0.04 --fps 25 --tank auto --out " +
-                                    (dir / "inferred").string());
-  ASSERT_EQ(r.status, 0) << r.output;
-  // Walls at x = 0 and 4, y = 0, z = 0 and 0.4, each found within one particle radius.
-  const std::string line = r.output.substr(r.output.find("container inferred from the fluid: walls "));
+// Walls at x = 0 and 4, y = 0, z = 0 and 0.4, each found within one particle radius.
+void expect_the_tanks_walls(const std::string& output) {
+  const size_t at_line = output.find("container inferred from the fluid: walls ");
+  ASSERT_NE(at_line, std::string::npos) << output;
+  const std::string line = output.substr(at_line, output.find('\n', at_line) - at_line);
   auto wall = [&](const std::string& side) {
     const size_t at = line.find(side + " at ");
     EXPECT_NE(at, std::string::npos) << side << ": " << line;
@@ -117,7 +116,28 @@ TEST_F(RealCache, TheTankIsInferredFromTheFluid) {
   EXPECT_NEAR(wall("-y"), 0.0, 0.04);
   EXPECT_NEAR(wall("-z"), 0.0, 0.04);
   EXPECT_NEAR(wall("+z"), 0.4, 0.04);
+  EXPECT_EQ(line.find("open: "), std::string::npos) << line;  // the top only
+}
+
+TEST_F(RealCache, TheTankIsInferredFromTheFluid) {
+  ASSERT_EQ(solved.status, 0) << solved.output;
+  const CommandResult r = run_spume("simulate --fluid '" + bgeo_pattern() + "' --radius 0.04 --fps 25 --tank auto --out " +
+                                    (dir / "inferred").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  expect_the_tanks_walls(r.output);
   const auto [emitted, removed] = emitted_and_removed(dir / "inferred/fluid/stats.csv");
+  EXPECT_EQ(removed, 0) << "of " << emitted;
+}
+
+// Without --tank, the one-line run uses the tank the fluid shows, and says so.
+TEST_F(RealCache, TheOneLineRunUsesTheInferredTankByDefault) {
+  ASSERT_EQ(solved.status, 0) << solved.output;
+  const CommandResult r = run_spume("simulate --fluid '" + bgeo_pattern() + "' --radius 0.04 --fps 25 --out " +
+                                    (dir / "default").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  expect_the_tanks_walls(r.output);
+  EXPECT_NE(r.output.find("used since no --tank was given (--tank none runs without it)"), std::string::npos) << r.output;
+  const auto [emitted, removed] = emitted_and_removed(dir / "default/fluid/stats.csv");
   EXPECT_EQ(removed, 0) << "of " << emitted;
 }
 
