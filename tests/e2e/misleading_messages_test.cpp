@@ -158,7 +158,7 @@ TEST_F(Messages, InfoOnADirectorySaysSoAndListsItsParticleFiles) {
 }
 
 // Case 6. `members` gzip members of 64 MiB of zeros each (written once, repeated: a 5 GiB stream from a
-// file of a few MB), after `head` (its own member when not empty).
+// file of about 23 MB), after `head` (its own member when not empty).
 void write_gzip_of_zeros(const fs::path& path, const std::string& head, int members) {
   const std::string zeros(size_t(64) << 20, '\0');
   const std::string member = io::gzip_compress(zeros);
@@ -182,7 +182,7 @@ double children_peak_mib() {
 TEST_F(Messages, AGzipOfZerosFailsOnItsMagicWithBoundedMemory) {
   const fs::path zeros = dir / "zeros.bgeo.gz";
   write_gzip_of_zeros(zeros, "", 80);
-  ASSERT_LT(fs::file_size(zeros), uint64_t(20) << 20);
+  ASSERT_LT(fs::file_size(zeros), uint64_t(64) << 20);  // level-1 deflate of zeros: about 230:1
   const CommandResult r = run_command("ulimit -v 1572864; " + std::string(SPUME_BINARY) + " info " + zeros.string() + " 2>&1");
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_TRUE(contains(r.output, "not a BGEO file: first bytes are 0 0 0 0 0")) << r.output;
