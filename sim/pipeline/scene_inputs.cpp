@@ -34,9 +34,10 @@ std::string spacing_warning(float particle_radius, float measured_spacing) {
              "(--radius) to about ", 0.5f * measured_spacing, " m");
 }
 
-void check_particle_spacing(const FluidSequenceInfo& fluid, float measured_spacing) {
+void check_particle_spacing(const FluidSequenceInfo& fluid, float measured_spacing, uint64_t particles) {
   const float h = fluid.support_radius;
-  if (!(measured_spacing >= h)) return;
+  // A handful of particles (an emitter's first drops) says little about the spacing of the fluid.
+  if (particles < kSpacingCheckParticles || !(measured_spacing >= h)) return;
   fail("fluid.radius ", fluid.particle_radius, " m (--radius): the fluid's particles lie ", measured_spacing,
        " m from their nearest neighbour (median of the first frame), ", measured_spacing / (2.0f * fluid.particle_radius),
        " times the spacing 2 r = ", 2.0f * fluid.particle_radius, " m this radius implies and beyond the support radius h = ",
@@ -81,7 +82,7 @@ SceneInputs read_scene_inputs(const SimScene& scene, const std::filesystem::path
     in.solids = SolidSet(std::move(solids));
   }
   if (!solver) {
-    check_particle_spacing(scene.fluid, in.survey.spacing);
+    check_particle_spacing(scene.fluid, in.survey.spacing, in.survey.frames.front().particles);
     const std::string warning = spacing_warning(scene.fluid.particle_radius, in.survey.spacing);
     if (!warning.empty()) in.notes.push_back(warning);
   }
