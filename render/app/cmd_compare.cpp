@@ -89,9 +89,9 @@ int compare_frames(const cli::ParsedArgs& args) {
   if (auto v = args.value("out")) {
     if (v->empty()) throw UsageError("--out: the folder name is empty");
     opts.out = fs::path(*v);
-    check_report_folder(*opts.out);
   }
   const FrameSet set = resolve_frames(args.positional[0], args.positional[1], args.value("frames"));
+  if (opts.out) check_report_folder(*opts.out);
   const bool quiet = args.has("quiet");
   if (!quiet)
     for (const std::string& note : set.notes) std::fprintf(stderr, "compare: %s\n", note.c_str());
