@@ -1,7 +1,13 @@
 // spume compare: image regression over frame sequences (or two images), with a report for people
 // (report.html) and for scripts (summary.csv, summary.json). Exit 0 when every frame passes, 1 when
-// one fails, 2 when the command cannot run as typed.
+// one fails, 2 when there is no verdict (the command cannot run as typed, or its report cannot be
+// written).
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <string>
 
@@ -55,6 +61,21 @@ void print_summary(const std::vector<FrameResult>& results, const CompareOptions
   std::printf("\n");
 }
 
+// The report folder is created and written to before any frame is compared, so that a folder that
+// cannot take the report fails at once, as the usage error it is (exit 2), never as "frames differ".
+void check_report_folder(const fs::path& out) {
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec) throw UsageError(str("--out ", out.string(), ": cannot create the report folder (", ec.message(), ")"));
+  if (!fs::is_directory(out, ec)) throw UsageError(str("--out ", out.string(), ": is a file, not a folder"));
+  const fs::path probe = out / str(".spume_compare_probe_", ::getpid());
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0)
+    throw UsageError(str("--out ", out.string(), ": cannot write in the report folder (", std::strerror(errno), ")"));
+  ::close(fd);
+  fs::remove(probe, ec);
+}
+
 int compare_frames(const cli::ParsedArgs& args) {
   CompareOptions opts;
   if (args.positional.size() != 2)
@@ -70,12 +91,20 @@ int compare_frames(const cli::ParsedArgs& args) {
     opts.out = fs::path(*v);
   }
   const FrameSet set = resolve_frames(args.positional[0], args.positional[1], args.value("frames"));
+  if (opts.out) check_report_folder(*opts.out);
   const bool quiet = args.has("quiet");
   if (!quiet)
     for (const std::string& note : set.notes) std::fprintf(stderr, "compare: %s\n", note.c_str());
   Progress progress("compare", set.frames.size(), quiet);
-  const std::vector<FrameResult> results =
-      compare_and_report(set, opts, [&](size_t done) { progress.update(done); });
+  std::vector<FrameResult> results;
+  try {
+    results = compare_and_report(set, opts, [&](size_t done) { progress.update(done); });
+  } catch (const Error& e) {
+    // Exit 1 means "frames differ" to a CI gate; a comparison that could not finish (a report that
+    // could not be written, a disk that filled up) is not a verdict.
+    std::fprintf(stderr, "spume compare: error: %s (no verdict)\n", e.what());
+    return cli::kExitUsage;
+  }
   progress.finish();
   print_summary(results, opts);
   if (opts.out) std::printf("Saved: %s\n", (*opts.out / "report.html").string().c_str());
@@ -95,7 +124,8 @@ Command cmd_compare() {
                 "folder means its frames/), or frame patterns such as out/wave/frames/%04d.png (matched by number).",
                 "A frame fails when more than --failpercent of its pixels differ by more than --fail, when any pixel",
                 "differs by more than --hardfail, or when it is missing, unreadable or of another size.",
-                "Exit status: 0 every frame passes, 1 a frame fails, 2 usage error."};
+                "Exit status: 0 every frame passes, 1 a frame fails, 2 no verdict: a usage error, or a report folder (--out)",
+                "that cannot be created or written."};
   return {spec, compare_frames};
 }
 

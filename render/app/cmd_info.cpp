@@ -1,6 +1,11 @@
 // spume info: what a particle file or cache holds.
+#include <algorithm>
+#include <cctype>
 #include <cstddef>
 #include <cstdio>
+#include <filesystem>
+#include <map>
+#include <set>
 
 #include "commands.h"
 #include "core/error.h"
@@ -9,9 +14,59 @@
 namespace spume {
 namespace {
 
+namespace fs = std::filesystem;
+
+// "fluid_12.bgeo" -> "fluid_#.bgeo" and 12: the file name with its last run of digits as '#', so the
+// frames of one sequence group together.
+std::pair<std::string, long> sequence_of(const std::string& name) {
+  const size_t end = name.find_last_of("0123456789");
+  if (end == std::string::npos) return {name, -1};
+  size_t begin = end;
+  while (begin > 0 && std::isdigit(static_cast<unsigned char>(name[begin - 1]))) --begin;
+  const std::string digits = name.substr(begin, std::min<size_t>(end + 1 - begin, 9));
+  return {name.substr(0, begin) + "#" + name.substr(end + 1), std::stol(digits)};
+}
+
+// A directory is not a file: say so, and list the particle files in it (as sequences) to choose from.
+[[noreturn]] void fail_on_directory(const fs::path& dir) {
+  std::map<std::string, std::set<long>> sequences;  // name with '#' -> frame numbers
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
+    if (!e.is_regular_file(ec)) continue;
+    try {
+      particle_format(e.path());
+    } catch (const Error&) {
+      continue;  // not a particle file
+    }
+    const auto [sequence, frame] = sequence_of(e.path().filename().string());
+    sequences[sequence].insert(frame);
+  }
+  std::string listing;
+  size_t shown = 0;
+  for (const auto& [sequence, frames] : sequences) {
+    if (++shown > 10) {
+      listing += str("\n  ... and ", sequences.size() - 10, " more");
+      break;
+    }
+    listing += frames.size() == 1 || *frames.begin() < 0
+                   ? str("\n  ", sequence, frames.size() > 1 ? str(" (", frames.size(), " files)") : "")
+                   : str("\n  ", sequence, ": ", frames.size(), " files, numbers ", *frames.begin(), " to ",
+                         *frames.rbegin());
+  }
+  if (sequences.empty())
+    fail(dir.string(), ": is a directory, not a particle file, and holds no particle files (",
+         "formats: .bgeo .bgeo.gz .bhclassic .vtk .vtu .vtp .ply .spf .spd)");
+  fail(dir.string(), ": is a directory, not a particle file; give one of its particle files (# is the frame ",
+       "number):", listing);
+}
+
 int info(const cli::ParsedArgs& args) {
   if (args.positional.empty()) cli::usage_fail("no FILE given");
-  for (const auto& path : args.positional) std::printf("%s\n", describe_particle_file(path).c_str());
+  for (const auto& path : args.positional) {
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) fail_on_directory(path);
+    std::printf("%s\n", describe_particle_file(path).c_str());
+  }
   return 0;
 }
 
@@ -22,7 +77,8 @@ Command cmd_info() {
   spec.name = "info";
   spec.forms = {"FILE..."};
   spec.summary = "what a particle file or cache holds: format, counts, attributes, bounds";
-  spec.notes = {"formats: .bgeo .bgeo.gz .bhclassic .vtk .vtu .vtp .ply, spume caches .spf .spd"};
+  spec.notes = {"formats: .bgeo .bgeo.gz .bhclassic .vtk .vtu .vtp .ply, spume caches .spf .spd",
+                "a directory is refused with a list of the particle files in it"};
   spec.max_operands = SIZE_MAX;
   return {spec, info};
 }

@@ -9,16 +9,29 @@
 namespace spume {
 namespace {
 
+// The README's tables of the keys under `prefix` ("" for all), ready to paste: a group whose every
+// key is chosen keeps its <!-- keys: ... --> markers; a part of a group is a table without them, so
+// it cannot be pasted over the whole group's table by mistake. "" when no key starts with `prefix`.
+std::string markdown_tables(const std::string& prefix) {
+  std::string out;
+  for (const KeyGroup& g : key_groups()) {
+    std::vector<const KeySpec*> chosen;
+    for (const KeySpec* k : g.keys)
+      if (std::string(k->path).rfind(prefix, 0) == 0) chosen.push_back(k);
+    if (chosen.empty()) continue;
+    const std::string table = key_table_markdown({g.name, chosen});
+    if (chosen.size() == g.keys.size())
+      out += str("<!-- keys: ", g.name, " -->\n", table, "<!-- /keys -->\n\n");
+    else
+      out += table + "\n";
+  }
+  return out;
+}
+
 int list_keys(const cli::ParsedArgs& args) {
   if (args.positional.size() > 1) cli::usage_fail("at most one PREFIX");
-  if (args.has("markdown")) {
-    // The README's tables, between their markers, ready to paste.
-    for (const KeyGroup& g : key_groups())
-      std::printf("<!-- keys: %s -->\n%s<!-- /keys -->\n\n", g.name, key_table_markdown(g).c_str());
-    return 0;
-  }
   const std::string prefix = args.positional.empty() ? "" : args.positional[0];
-  const std::string listing = key_listing(prefix);
+  const std::string listing = args.has("markdown") ? markdown_tables(prefix) : key_listing(prefix);
   if (listing.empty()) fail("no key starts with \"", prefix, "\" (try diffuse, render.water, fluid.solver)");
   std::fputs(listing.c_str(), stdout);
   return 0;
@@ -31,7 +44,8 @@ Command cmd_keys() {
   spec.name = "keys";
   spec.forms = {"[PREFIX] [options]"};
   spec.summary = "every scene key: type, unit, default, allowed values, meaning (e.g. spume keys render.water)";
-  spec.options = {{"markdown", "", "the README's key tables instead, between their <!-- keys: ... --> markers"}};
+  spec.options = {{"markdown", "",
+                   "as the README's markdown tables (a whole group between its <!-- keys: ... --> markers)"}};
   spec.runs_without_arguments = true;
   return {spec, list_keys};
 }

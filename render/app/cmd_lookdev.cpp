@@ -41,6 +41,12 @@ Variation parse_variation(const std::string& text) {
   return v;
 }
 
+std::string join_values(const Variation& v) {
+  std::string out;
+  for (const std::string& value : v.values) out += (out.empty() ? "" : ",") + value;
+  return out;
+}
+
 // Every combination, the first variation changing slowest; each is a list of "key=value" overrides.
 std::vector<std::vector<std::string>> combinations(const std::vector<Variation>& vary) {
   std::vector<std::vector<std::string>> out = {{}};
@@ -58,7 +64,17 @@ std::vector<std::vector<std::string>> combinations(const std::vector<Variation>&
 
 int lookdev(const cli::ParsedArgs& args) {
   std::vector<Variation> vary;
-  for (const auto& v : args.all("vary")) vary.push_back(parse_variation(v));
+  for (const auto& text : args.all("vary")) {
+    Variation v = parse_variation(text);
+    // Each tile is labelled with its key's value: a key varied twice would label tiles with two
+    // contradictory values, one of them not the one drawn.
+    for (const Variation& earlier : vary)
+      if (earlier.key == v.key)
+        cli::usage_fail("--vary: ", v.key, " is varied twice (", earlier.key, "=", join_values(earlier), " and ",
+                        text, "); give each key once, with all its values: --vary ", v.key, "=", join_values(earlier),
+                        ",", join_values(v));
+    vary.push_back(std::move(v));
+  }
   const auto combos = combinations(vary);
   if (combos.size() > 256) cli::usage_fail("--vary: ", combos.size(), " combinations; at most 256 fit a contact sheet");
   // Every option value is checked before the first scene is loaded.
@@ -83,6 +99,7 @@ int lookdev(const cli::ParsedArgs& args) {
     setup.render.height = std::max(1, int(std::lround(double(setup.render.height) * tile_width / full_width)));
     setup.render.width = tile_width;
     SceneRender scene = scene_render(setup.sim, setup.out_root);
+    if (c == 0) print_input_warnings(scene, args.has("quiet"));
     PreparedRender prepared = prepare_render(scene.scene, setup.render);
     const std::vector<int>& frames = scene.scene.frames;
     if (frame < 0) {

@@ -111,7 +111,7 @@ SceneSetup load_scene_setup(const cli::ParsedArgs& args, const std::vector<std::
     setup.sim.infer_container = TankInference::IfEvident;
   setup.render = read_render_settings(loaded.root.child("render"), setup.sim.fluid.particle_radius);
   loaded.root.reject_unknown_keys();
-  setup.render_keys = loaded.root.raw("render");
+  setup.render_keys = loaded.root.effective("render");
   if (auto out = args.value("out")) setup.out_root = *out;
   setup.quiet = args.has("quiet");
   return setup;

@@ -21,7 +21,7 @@ std::vector<std::string> scene_command_forms(const std::string& extra = "");
 struct SceneSetup {
   SimScene sim;
   RenderSettings render;
-  Json render_keys;                // the scene's "render" object as written (frame records)
+  Json render_keys;                // the render keys' values as used, defaults included (frame records)
   std::filesystem::path out_root = "out";
   bool quiet = false;
 };

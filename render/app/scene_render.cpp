@@ -1,5 +1,7 @@
 #include "scene_render.h"
 
+#include <cstdio>
+
 #include "core/error.h"
 #include "io/cache_layout.h"
 #include "pipeline/body_track_file.h"
@@ -34,6 +36,12 @@ SceneRender scene_render(const SimScene& scene, const std::filesystem::path& out
   for (const FrameSurvey& f : r.inputs.survey.frames) surveyed.push_back(f.frame);
   s.sequence_digest = record_digest(diffuse_stage_record(scene, r.inputs, surveyed, s.scene_out).to_json());
   return r;
+}
+
+void print_input_warnings(const SceneRender& render, bool quiet) {
+  if (quiet) return;
+  for (const std::string& note : render.inputs.notes)
+    if (note.rfind("warning:", 0) == 0) std::fprintf(stderr, "%s\n", note.c_str());
 }
 
 void check_diffuse_caches(const SimScene& scene, const SceneRender& render, const RenderSettings& settings,

@@ -110,7 +110,7 @@ inline constexpr KeySpec sun_direction{.path = "render.sun_direction", .type = V
                                        .lo = -1e6, .hi = 1e6, .lo_bound = Closed, .hi_bound = Closed,
                                        .doc = "direction towards the sun (normalised)"};
 inline constexpr KeySpec frames{.path = "render.frames", .type = Text, .choices = "frames/%04d.png",
-                                .doc = "output pattern under OUT/<scene>/ (%04d, %d or ####)"};
+                                .doc = "output pattern under OUT/<scene>/ (%04d, %d or ####), ending in .png"};
 
 inline constexpr auto all = std::to_array<const KeySpec*>(
     {&resolution, &spp, &seed, &camera, &camera_position, &camera_target, &camera_fov, &camera_keys, &key_time,

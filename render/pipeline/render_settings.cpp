@@ -1,5 +1,7 @@
 #include "render_settings.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 
 #include <filesystem>
@@ -125,6 +127,12 @@ RenderSettings read_render_settings(const ParamReader& render, float particle_ra
   }
   if (std::filesystem::path(s.frame_pattern).is_absolute() || s.frame_pattern.find("..") != std::string::npos)
     render.fail_at("frames", str("\"", s.frame_pattern, "\" must stay inside the scene's output folder"));
+  // Frames are PNG: a name that says otherwise would hold bytes its readers cannot open.
+  std::string extension = std::filesystem::path(s.frame_pattern).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (extension != ".png")
+    render.fail_at("frames", str("\"", s.frame_pattern, "\" ends in \"", extension.empty() ? "(no extension)" : extension,
+                                 "\"; spume writes PNG frames, so the name must end in .png, e.g. \"frames/%04d.png\""));
   return s;
 }
 

@@ -24,6 +24,17 @@ int open_lock_file(const std::filesystem::path& path) {
   return fd;
 }
 
+// The lock file lives in the output folder: a folder that cannot be made or written to is named as
+// such, with the system's reason, rather than as a lock file that cannot be opened.
+void require_writable_folder(const std::filesystem::path& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) fail(dir.string(), ": cannot create the output folder (", ec.message(), ")");
+  if (!std::filesystem::is_directory(dir, ec)) fail(dir.string(), ": the output folder is a file, not a folder");
+  if (::access(dir.c_str(), W_OK | X_OK) != 0)
+    fail(dir.string(), ": cannot write in the output folder (", std::strerror(errno), ")");
+}
+
 // Holds the gate for one look at the lock.
 class Gate {
  public:
@@ -53,8 +64,7 @@ void update_under_gate(const std::filesystem::path& dir, const std::function<voi
 
 OutputLock::OutputLock(const std::filesystem::path& dir, Mode mode, const std::string& keys, const std::string& what,
                        bool quiet) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
+  require_writable_folder(dir);
   const auto lock_path = dir / ".lock", gate_path = dir / ".lock.gate", keys_path = dir / ".lock.keys";
   fd_ = open_lock_file(lock_path);
   // First line: the holders' keys, which a sharer must match; second: who holds it, for messages.

@@ -44,6 +44,49 @@ Json ParamReader::raw(const std::string& key) const {
 
 bool ParamReader::has(const std::string& key) const { return find(key) != nullptr; }
 
+namespace {
+
+Json used_json(double v) { return v; }
+Json used_json(long v) { return v; }
+Json used_json(bool v) { return v; }
+Json used_json(const std::string& v) { return v; }
+Json used_json(const Vec3f& v) { return Json::array({v.x(), v.y(), v.z()}); }
+Json used_json(const std::pair<double, double>& v) { return Json::array({v.first, v.second}); }
+
+// `used` laid over `written`: objects key by key, arrays element by element, values replaced; so a
+// part written but not read as a value (an object only tested for presence) stays as written.
+void lay_over(Json& written, const Json& used) {
+  if (written.is_object() && used.is_object()) {
+    for (const auto& [key, value] : used.items()) lay_over(written[key], value);
+  } else if (written.is_array() && used.is_array()) {
+    for (size_t i = 0; i < used.size(); ++i) {
+      if (i < written.size()) lay_over(written[i], used[i]);
+      else written.push_back(used[i]);
+    }
+  } else if (!used.is_null()) {
+    written = used;
+  }
+}
+
+}  // namespace
+
+template <typename T>
+T ParamReader::note(const std::string& key, T value) const {
+  try {
+    doc_->used[Json::json_pointer(path_of(key))] = used_json(value);
+  } catch (const Json::exception&) {
+    // A key read both as a value and as an object: its record stays as written (effective()).
+  }
+  return value;
+}
+
+Json ParamReader::effective(const std::string& key) const {
+  Json out = raw(key);
+  const Json::json_pointer pointer(path_of(key));
+  if (doc_->used.contains(pointer)) lay_over(out, doc_->used.at(pointer));
+  return out;
+}
+
 // For a key that is absent (usually: required and missing), the present key of the same object that
 // looks like a typo of it: nobody asked for it, and it is not a key asked for anywhere else either
 // (so "max" is never offered for a missing "min"). One edit per three letters at most.
@@ -75,11 +118,12 @@ std::optional<double> ParamReader::optional_number(const std::string& key) const
   // that range would become infinity there and silently break the run.
   if (std::abs(d) > double(std::numeric_limits<float>::max()))
     fail_at(key, str("value ", d, " is too large: every number must fit a 32-bit float (at most about 3.4e38)"));
-  return d;
+  return note(key, d);
 }
 
 double ParamReader::number(const std::string& key, double fallback) const {
-  return optional_number(key).value_or(fallback);
+  if (const std::optional<double> v = optional_number(key)) return *v;
+  return note(key, fallback);
 }
 
 double ParamReader::number_in(const std::string& key, double fallback, double lo, double hi) const {
@@ -104,29 +148,30 @@ double ParamReader::non_negative(const std::string& key, double fallback) const 
 
 long ParamReader::integer_in(const std::string& key, long fallback, long lo, long hi) const {
   const Json* v = find(key);
-  if (!v) return fallback;
+  if (!v) return note(key, fallback);
   if (!v->is_number_integer()) fail_at(key, str("expected a whole number, found ", v->dump()));
   const long i = v->get<long>();
   if (i < lo || i > hi) fail_at(key, str("value ", i, " is out of range; allowed ", lo, " to ", hi));
-  return i;
+  return note(key, i);
 }
 
 bool ParamReader::boolean(const std::string& key, bool fallback) const {
   const Json* v = find(key);
-  if (!v) return fallback;
+  if (!v) return note(key, fallback);
   if (!v->is_boolean()) fail_at(key, str("expected true or false, found ", v->dump()));
-  return v->get<bool>();
+  return note(key, v->get<bool>());
 }
 
 std::optional<std::string> ParamReader::optional_text(const std::string& key) const {
   const Json* v = find(key);
   if (!v) return std::nullopt;
   if (!v->is_string()) fail_at(key, str("expected a string, found ", v->dump()));
-  return v->get<std::string>();
+  return note(key, v->get<std::string>());
 }
 
 std::string ParamReader::text(const std::string& key, const std::string& fallback) const {
-  return optional_text(key).value_or(fallback);
+  if (std::optional<std::string> v = optional_text(key)) return *v;
+  return note(key, fallback);
 }
 
 std::string ParamReader::choice(const std::string& key, const std::string& fallback,
@@ -145,16 +190,17 @@ std::optional<Vec3f> ParamReader::optional_vec3(const std::string& key) const {
     fail_at(key, str("expected [x, y, z] numbers, found ", v->dump()));
   Vec3f out((*v)[0].get<float>(), (*v)[1].get<float>(), (*v)[2].get<float>());
   if (!finite(out)) fail_at(key, str("expected finite numbers, found ", v->dump()));
-  return out;
+  return note(key, out);
 }
 
 Vec3f ParamReader::vec3(const std::string& key, const Vec3f& fallback) const {
-  return optional_vec3(key).value_or(fallback);
+  if (const std::optional<Vec3f> v = optional_vec3(key)) return *v;
+  return note(key, fallback);
 }
 
 std::pair<double, double> ParamReader::range(const std::string& key, std::pair<double, double> fallback) const {
   const Json* v = find(key);
-  if (!v) return fallback;
+  if (!v) return note(key, fallback);
   if (!v->is_array() || v->size() != 2 || !(*v)[0].is_number() || !(*v)[1].is_number())
     fail_at(key, str("expected [min, max], found ", v->dump()));
   const double lo = (*v)[0].get<double>(), hi = (*v)[1].get<double>();
@@ -164,7 +210,7 @@ std::pair<double, double> ParamReader::range(const std::string& key, std::pair<d
   // Compared as stored (32-bit floats): values closer than that resolves would divide by zero.
   if (!(float(lo) < float(hi)))
     fail_at(key, str("min ", lo, " must be below max ", hi, " (the clamp divides by max - min)"));
-  return {lo, hi};
+  return note(key, std::make_pair(lo, hi));
 }
 
 ParamReader ParamReader::child(const std::string& key) const {
@@ -217,7 +263,7 @@ double ParamReader::number(const KeySpec& k, double r, double mass_ratio) const 
   const std::optional<double> v = optional_number(key);
   if (!v) {
     if (!k.has_value()) fail_at(key, missing_message(k));
-    return scaled_default(k, 0, r, mass_ratio);
+    return note(key, scaled_default(k, 0, r, mass_ratio));
   }
   check_in_range(k, key, *v);
   return *v;
@@ -228,12 +274,12 @@ long ParamReader::integer(const KeySpec& k) const {
   const Json* v = find(key);
   if (!v) {
     if (!k.has_value()) fail_at(key, missing_message(k));
-    return long(k.value[0]);
+    return note(key, long(k.value[0]));
   }
   if (!v->is_number_integer()) fail_at(key, str("expected a whole number, found ", v->dump()));
   const long i = v->get<long>();
   check_in_range(k, key, double(i));
-  return i;
+  return note(key, i);
 }
 
 bool ParamReader::boolean(const KeySpec& k) const { return boolean(declared_key(k), k.value[0] != 0.0); }
@@ -260,14 +306,14 @@ std::optional<Vec3f> ParamReader::optional_vec3(const KeySpec& k) const {
 Vec3f ParamReader::vec3(const KeySpec& k) const {
   if (const std::optional<Vec3f> v = optional_vec3(k)) return *v;
   if (!k.has_value()) fail_at(k.name(), missing_message(k));
-  return declared_vec3<Vec3f>(k);
+  return note(declared_key(k), declared_vec3<Vec3f>(k));
 }
 
 std::pair<double, double> ParamReader::range(const KeySpec& k, double r, double mass_ratio) const {
   const std::string key = declared_key(k);
   if (!has(key)) {
     if (!k.has_value()) fail_at(key, missing_message(k));
-    return {scaled_default(k, 0, r, mass_ratio), scaled_default(k, 1, r, mass_ratio)};
+    return note(key, std::make_pair(scaled_default(k, 0, r, mass_ratio), scaled_default(k, 1, r, mass_ratio)));
   }
   const auto v = range(key, {0.0, 1.0});
   check_in_range(k, key, v.first);

@@ -24,6 +24,7 @@ struct ParamDocument {
   std::string source;            // file name used in messages
   Json root;
   std::set<std::string> asked;   // every key path looked up, present or not
+  Json used;                     // every value read, at its key path: as written, or the default taken
 };
 
 class ParamReader {
@@ -73,6 +74,12 @@ class ParamReader {
   // of what produced a cache, never for reading values.
   Json raw(const std::string& key) const;
 
+  // The JSON under `key` with every key read so far at the value the run uses: as written, or the
+  // default taken when absent. Records of what made an output compare these, so a key written at
+  // its default equals the key left out (`--set diffuse.drag=0.5` is the default drag). Keys written
+  // but not read as values stay as written. Null when nothing is there.
+  Json effective(const std::string& key) const;
+
   // Fails with the message prefixed by the source file and this key's path; when `key` is absent, a
   // present unknown key a typo away is suggested ("radus" for a missing "radius").
   [[noreturn]] void fail_at(const std::string& key, const std::string& message) const;
@@ -85,6 +92,9 @@ class ParamReader {
 
  private:
   const Json* find(const std::string& key) const;  // records the lookup
+  // Records the value used for `key` (doc_->used); returns it.
+  template <typename T>
+  T note(const std::string& key, T value) const;
   // The declaration's key name, checked against this reader's place.
   std::string declared_key(const KeySpec& k) const;
   void check_in_range(const KeySpec& k, const std::string& key, double v) const;

@@ -11,7 +11,6 @@
 namespace spume {
 namespace {
 
-using io::ByteReader;
 using io::Endian;
 
 constexpr int kFloat = 0, kInt = 1, kIndex = 4, kVector = 5;
@@ -53,6 +52,49 @@ struct Parsed {
   }
 };
 
+// Big-endian values read in order from the front of a file (io::PrefixReader), which reads or inflates
+// only as far as they reach: the magic is checked on the first bytes, and a header's claim that
+// exceeds what the file can hold fails before anything is inflated.
+class HeaderCursor {
+ public:
+  explicit HeaderCursor(io::PrefixReader& file) : file_(file) {}
+  size_t offset() const { return pos_; }
+  const std::string& where() const { return file_.where(); }
+  bool at_end() { return file_.first(pos_ + 1).size() == pos_; }
+
+  // A view of the next n bytes, valid until the next read.
+  std::string_view take(size_t n, std::string_view what) {
+    if (n > room())
+      fail(where(), ": truncated or corrupt: ", what, " needs ", n, " bytes at offset ", pos_,
+           ", more than the file can hold");
+    const std::string_view have = file_.first(pos_ + n);
+    if (have.size() < pos_ + n)
+      fail(where(), ": truncated: ", what, " needs ", n, " bytes at offset ", pos_, " but only ", have.size() - pos_,
+           " remain");
+    pos_ += n;
+    return have.substr(pos_ - n);
+  }
+  void skip(size_t n, std::string_view what) { take(n, what); }
+  // Fails without reading when count elements of elem_size bytes cannot be in the file.
+  void require_array(uint64_t count, size_t elem_size, std::string_view what) const {
+    if (elem_size != 0 && count > room() / elem_size)
+      fail(where(), ": truncated or corrupt: ", what, " claims ", count, " elements of ", elem_size,
+           " bytes at offset ", pos_, ", more than the file can hold (", file_.gzipped() ? "at most " : "",
+           room(), " bytes remain", file_.gzipped() ? " once decompressed)" : ")");
+  }
+  template <typename T>
+  T read(std::string_view what) {
+    return io::load<T>(take(sizeof(T), what).data(), Endian::Big);
+  }
+
+ private:
+  // At most this many bytes can follow the cursor.
+  uint64_t room() const { return file_.size_bound() - std::min<uint64_t>(pos_, file_.size_bound()); }
+
+  io::PrefixReader& file_;
+  size_t pos_ = 0;
+};
+
 void reject_other_formats(std::string_view b, const std::string& where) {
   const std::string hint = "; export classic geometry from Houdini (.bhclassic, or .bgeo with classic format) instead";
   if (b.size() >= 4 && b.substr(0, 4) == "\x7fNSJ")
@@ -71,7 +113,7 @@ void reject_other_formats(std::string_view b, const std::string& where) {
 }
 
 // Reads `count` attribute definitions; word offsets continue from `stride`, which grows.
-std::vector<Attr> read_attribute_table(ByteReader& r, int count, const char* kind, size_t& stride) {
+std::vector<Attr> read_attribute_table(HeaderCursor& r, int count, const char* kind, size_t& stride) {
   std::vector<Attr> attrs;
   for (int i = 0; i < count; ++i) {
     Attr a;
@@ -105,15 +147,17 @@ std::vector<PointAttribute> listing(const std::vector<Attr>& attrs) {
   return out;
 }
 
+// The header first, the rest only as far as it says: no byte past what the header accounts for is
+// read or inflated but one, to tell a clean end from trailing data.
 Parsed parse(const std::filesystem::path& path) {
   Parsed p;
   p.where = path.string();
-  std::string raw = io::read_file_bytes(path);
-  p.info.gzipped = io::has_gzip_magic(raw);
-  p.bytes = p.info.gzipped ? io::gunzip(raw, p.where) : std::move(raw);
-  reject_other_formats(p.bytes, p.where);
+  io::PrefixReader file(path);
+  p.info.gzipped = file.gzipped();
+  // Enough to recognise the other formats (the JSON and ASCII geometries start with text).
+  reject_other_formats(file.first(size_t(1) << 12), p.where);
 
-  ByteReader r(p.bytes, p.where, Endian::Big);
+  HeaderCursor r(file);
   r.skip(5, "magic");
   p.info.version = r.read<int32_t>("version");
   if (p.info.version != 5) fail(p.where, ": BGEO version ", p.info.version, "; only version 5 (classic) is supported");
@@ -136,13 +180,17 @@ Parsed parse(const std::filesystem::path& path) {
   r.require_array(p.info.point_count, p.stride * 4, "point data");
   p.points_offset = r.offset();
   r.skip(p.info.point_count * p.stride * 4, "point data");
-  for (size_t i = 0; i < p.info.point_count; ++i)
-    p.info.bounds.extend(Vec3f(p.word<float>(i, 0), p.word<float>(i, 1), p.word<float>(i, 2)));
+  const auto keep_points = [&] {
+    p.bytes = file.release();
+    for (size_t i = 0; i < p.info.point_count; ++i)
+      p.info.bounds.extend(Vec3f(p.word<float>(i, 0), p.word<float>(i, 1), p.word<float>(i, 2)));
+  };
 
   // Primitives and groups (Houdini particle systems) would need their own parsers; the points are all
   // spume needs, so the rest is left unread rather than half-understood.
   if (counts[1] != 0 || counts[2] != 0 || counts[3] != 0 || counts[5] != 0 || counts[6] != 0) {
     p.info.trailing_data_skipped = true;
+    keep_points();
     return p;
   }
   size_t detail_stride = 0;
@@ -152,7 +200,8 @@ Parsed parse(const std::filesystem::path& path) {
   if (uint8_t(end[0]) != 0x00 || uint8_t(end[1]) != 0xff)
     fail(p.where, ": missing end marker: found bytes ", int(uint8_t(end[0])), " ", int(uint8_t(end[1])),
          " at offset ", r.offset() - 2, "; expected 00 FF (file corrupt or not classic BGEO)");
-  if (!r.at_end()) fail(p.where, ": ", r.remaining(), " unexpected bytes after the end marker (file corrupt)");
+  if (!r.at_end()) fail(p.where, ": unexpected bytes after the end marker at offset ", r.offset(), " (file corrupt)");
+  keep_points();
   return p;
 }
 

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <new>
 #include <system_error>
 
 namespace spume::io {
@@ -71,6 +72,99 @@ std::string gunzip(std::string_view data, const std::string& where) {
   }
   inflateEnd(&zs);
   return out;
+}
+
+struct PrefixReader::Inflater {
+  z_stream zs{};
+  std::string input = std::string(size_t(1) << 16, '\0');
+  uint64_t consumed = 0;  // compressed bytes inflate has taken, for messages
+  Inflater() {
+    if (inflateInit2(&zs, 16 + MAX_WBITS) != Z_OK) throw std::bad_alloc();
+  }
+  ~Inflater() { inflateEnd(&zs); }
+};
+
+PrefixReader::PrefixReader(const std::filesystem::path& path) : where_(path.string()) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) fail(where_, ": no such file");
+  if (std::filesystem::is_directory(path, ec)) fail(where_, ": is a directory, expected a particle file");
+  in_.open(path, std::ios::binary);
+  if (!in_) fail(where_, ": cannot open for reading");
+  const uint64_t size = std::filesystem::file_size(path, ec);
+  if (ec) fail(where_, ": cannot determine file size");
+  char magic[2] = {};
+  in_.read(magic, 2);
+  const std::streamsize got = in_.gcount();
+  in_.clear();
+  in_.seekg(0);
+  if (has_gzip_magic(std::string_view(magic, size_t(got)))) {
+    inflater_ = std::make_unique<Inflater>();
+    size_bound_ = size * 1032;  // deflate's densest code: 258 bytes from about 2 bits
+  } else {
+    size_bound_ = size;
+  }
+}
+
+PrefixReader::~PrefixReader() = default;
+
+std::string_view PrefixReader::first(size_t n) {
+  if (out_.size() < n && !ended_) inflater_ ? inflate_to(n) : read_plain(n);
+  return std::string_view(out_).substr(0, n);
+}
+
+void PrefixReader::read_plain(size_t n) {
+  const size_t old = out_.size();
+  const size_t want = size_t(std::min<uint64_t>(std::max<size_t>(n, old + (size_t(1) << 16)), size_bound_)) - old;
+  out_.resize(old + want);
+  in_.read(out_.data() + old, std::streamsize(want));
+  out_.resize(old + size_t(in_.gcount()));
+  if (out_.size() < n || size_t(in_.gcount()) < want) ended_ = true;
+}
+
+// After a gzip member: does another member follow (gzip(1) concatenation)? Anything else ends the data.
+bool PrefixReader::next_member_follows() {
+  z_stream& zs = inflater_->zs;
+  std::string& input = inflater_->input;
+  if (zs.avail_in < 2) {
+    const size_t left = zs.avail_in;
+    std::memmove(input.data(), zs.next_in, left);
+    in_.read(input.data() + left, std::streamsize(input.size() - left));
+    zs.next_in = reinterpret_cast<Bytef*>(input.data());
+    zs.avail_in = uInt(left + size_t(in_.gcount()));
+  }
+  return has_gzip_magic(std::string_view(reinterpret_cast<const char*>(zs.next_in), zs.avail_in));
+}
+
+void PrefixReader::inflate_to(size_t n) {
+  z_stream& zs = inflater_->zs;
+  std::string& input = inflater_->input;
+  while (out_.size() < n && !ended_) {
+    if (zs.avail_in == 0) {
+      in_.read(input.data(), std::streamsize(input.size()));
+      if (in_.gcount() == 0)
+        fail(where_, ": truncated gzip data (the compressed stream ends early after ", out_.size(),
+             " decompressed bytes)");
+      zs.next_in = reinterpret_cast<Bytef*>(input.data());
+      zs.avail_in = uInt(in_.gcount());
+    }
+    // Room grows geometrically, so memory follows what the stream really holds, not what was asked.
+    const size_t old = out_.size();
+    const size_t room = std::min<size_t>(n - old, std::max<size_t>(old, size_t(1) << 16));
+    out_.resize(old + room);
+    zs.next_out = reinterpret_cast<Bytef*>(out_.data() + old);
+    zs.avail_out = uInt(room);
+    const uInt before = zs.avail_in;
+    const int rc = inflate(&zs, Z_NO_FLUSH);
+    inflater_->consumed += before - zs.avail_in;
+    out_.resize(old + room - zs.avail_out);
+    if (rc == Z_STREAM_END) {
+      if (next_member_follows()) inflateReset(&zs);
+      else ended_ = true;
+    } else if (rc != Z_OK && rc != Z_BUF_ERROR) {
+      fail(where_, ": corrupt gzip data at compressed offset ", inflater_->consumed, ": ",
+           zs.msg ? zs.msg : "unknown error");
+    }
+  }
 }
 
 std::string gzip_compress(std::string_view data) {

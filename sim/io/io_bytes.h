@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -23,6 +25,41 @@ std::string gunzip(std::string_view data, const std::string& where);
 std::string gzip_compress(std::string_view data);
 // One zlib (RFC 1950) stream whose decompressed size is known in advance (VTU blocks).
 std::string zlib_uncompress(std::string_view data, size_t expected_size, const std::string& where);
+
+// A file's bytes from its start, read (and inflated, when gzip-compressed) only as far as asked: a
+// reader checks the magic on the first bytes and takes the body only once its header says how long
+// it is, so a huge or hostile file costs no more memory than its header claims (and a claim beyond
+// what the file can hold fails before anything is inflated).
+class PrefixReader {
+ public:
+  // Throws "<path>: no such file", "is a directory", "cannot open for reading".
+  explicit PrefixReader(const std::filesystem::path& path);
+  ~PrefixReader();
+  PrefixReader(const PrefixReader&) = delete;
+  PrefixReader& operator=(const PrefixReader&) = delete;
+
+  bool gzipped() const { return inflater_ != nullptr; }
+  const std::string& where() const { return where_; }
+  // The first n bytes, or all there are when the data is shorter. Valid until the next call.
+  std::string_view first(size_t n);
+  // No more bytes than this can exist: the file's size, or deflate's bound of 1032 times it.
+  uint64_t size_bound() const { return size_bound_; }
+  // The bytes read so far (at least every byte asked for), moved out.
+  std::string release() { return std::move(out_); }
+
+ private:
+  struct Inflater;
+  void read_plain(size_t n);
+  void inflate_to(size_t n);
+  bool next_member_follows();
+
+  std::string where_;
+  std::ifstream in_;
+  uint64_t size_bound_ = 0;
+  std::string out_;
+  bool ended_ = false;
+  std::unique_ptr<Inflater> inflater_;
+};
 
 enum class Endian { Little, Big };
 

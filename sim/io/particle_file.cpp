@@ -32,6 +32,7 @@ bool starts_with_newer_houdini_magic(const std::filesystem::path& path) {
 void require_file(const std::filesystem::path& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) fail(path.string(), ": no such file");
+  if (std::filesystem::is_directory(path, ec)) fail(path.string(), ": is a directory, not a particle file");
 }
 
 std::string vec_str(const Vec3f& v) { return str("(", v.x(), ", ", v.y(), ", ", v.z(), ")"); }

@@ -35,6 +35,17 @@ std::string spacing_warning(float particle_radius, float measured_spacing) {
              "(--radius) to about ", 0.5f * measured_spacing, " m");
 }
 
+void check_particle_spacing(const FluidSequenceInfo& fluid, float measured_spacing, uint64_t particles) {
+  const float h = fluid.support_radius;
+  // A handful of particles (an emitter's first drops) says little about the spacing of the fluid.
+  if (particles < kSpacingCheckParticles || !(measured_spacing >= h)) return;
+  fail("fluid.radius ", fluid.particle_radius, " m (--radius): the fluid's particles lie ", measured_spacing,
+       " m from their nearest neighbour (median of the first frame), ", measured_spacing / (2.0f * fluid.particle_radius),
+       " times the spacing 2 r = ", 2.0f * fluid.particle_radius, " m this radius implies and beyond the support radius h = ",
+       h, " m: no particle would have a neighbour, so the water would have no surface and no spray, foam or bubbles "
+       "could form. Set fluid.radius (--radius) to about ", 0.5f * measured_spacing, " m (half the spacing)");
+}
+
 SceneInputs read_scene_inputs(const SimScene& scene, const std::filesystem::path& out_root, bool quiet) {
   SceneInputs in;
   const std::filesystem::path scene_out = out_root / scene.name;
@@ -92,6 +103,7 @@ SceneInputs read_scene_inputs(const SimScene& scene, const std::filesystem::path
     in.solids = SolidSet(std::move(solids));
   }
   if (!solver) {
+    check_particle_spacing(scene.fluid, in.survey.spacing, in.survey.frames.front().particles);
     const std::string warning = spacing_warning(scene.fluid.particle_radius, in.survey.spacing);
     if (!warning.empty()) in.notes.push_back(warning);
   }

@@ -21,8 +21,16 @@ struct SceneInputs {
 };
 
 // The fluid frames of the scene (its files, or the solver's caches under out_root, which must
-// exist), surveyed. Writes the notes to stderr unless quiet.
+// exist), surveyed. Writes the notes to stderr unless quiet. Fluid files too sparse for the radius
+// are an error (check_particle_spacing).
 SceneInputs read_scene_inputs(const SimScene& scene, const std::filesystem::path& out_root, bool quiet);
+
+// Throws when the fluid's particles (`measured_spacing` apart in a first frame of `particles`, at least
+// kSpacingCheckParticles) lie farther apart than the support radius h: with no neighbour, every frame
+// would come out empty (no surface, no diffuse material), whatever the other keys. A radius in the
+// wrong unit (mm for m) does this; the message gives the radius the spacing implies.
+inline constexpr uint64_t kSpacingCheckParticles = 8;
+void check_particle_spacing(const FluidSequenceInfo& fluid, float measured_spacing, uint64_t particles);
 
 // The warning for a radius that does not match the cache's spacing (2r expected), or "".
 std::string spacing_warning(float particle_radius, float measured_spacing);

@@ -74,16 +74,15 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
   if (scene.write_fluid_bgeo && scene.source != FluidSourceKind::Solver)
     output.fail_at("fluid_bgeo", "only scenes with fluid.source \"solver\" write fluid frames");
 
-  Json fluid_keys = root.raw("fluid");
+  // The values the run uses (defaults included), so a key written at its default is no change.
+  Json fluid_keys = root.effective("fluid");
   if (fluid_keys.is_object()) fluid_keys.erase("frames");
-  Json keys = {{"gravity", root.raw("gravity")}, {"fluid", fluid_keys}, {"solids", root.raw("solids")}};
-  const Json output_keys = root.raw("output");
-  if (output_keys.is_object() && output_keys.contains("fluid_bgeo"))
-    keys["output"] = {{"fluid_bgeo", output_keys["fluid_bgeo"]}};  // what the fluid stage writes
+  Json keys = {{"gravity", root.effective("gravity")}, {"fluid", fluid_keys}, {"solids", root.effective("solids")}};
+  keys["output"] = {{"fluid_bgeo", scene.write_fluid_bgeo}};  // what the fluid stage writes
   scene.fluid_keys = with_generation(keys);
-  keys["diffuse"] = root.raw("diffuse");
-  keys["domain"] = root.raw("domain");
-  keys["output"] = root.raw("output");
+  keys["diffuse"] = root.effective("diffuse");
+  keys["domain"] = root.effective("domain");
+  keys["output"] = root.effective("output");
   scene.diffuse_keys = with_generation(keys);
   return scene;
 }

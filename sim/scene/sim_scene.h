@@ -42,8 +42,9 @@ struct SimScene {
   FluidSolverSetup solver;
 
   // Every key that shapes the fluid frames (gravity, fluid, solids; not the frame range) and, with
-  // the diffuse keys, domain and output added, the diffuse frames, as JSON (objects compare equal
-  // whatever the key order). Cache folders record them (io/stage_record.h); a difference means stale.
+  // the diffuse keys, domain and output added, the diffuse frames, as JSON at the values used
+  // (defaults included: ParamReader::effective; objects compare equal whatever the key order). Cache
+  // folders record them (io/stage_record.h); a difference of value means stale.
   Json fluid_keys;
   Json diffuse_keys;
 };

@@ -4,6 +4,8 @@
 // and stale images of an earlier run removed.
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include <nlohmann/json.hpp>
 
 #include "../sim/run_command.h"
@@ -231,6 +233,24 @@ TEST(CompareCommand, ImagesOfAnEarlierRunAreRemoved) {
   EXPECT_FALSE(fs::exists(dir / "out" / "thumbs" / "0000_heat.png"));
   EXPECT_TRUE(fs::is_regular_file(dir / "out" / "thumbs" / "0000_new.png"));
   EXPECT_TRUE(fs::is_regular_file(dir / "out" / "mine.txt"));
+}
+
+// A report folder that cannot be made is no verdict: exit 2 with the folder and the system's reason,
+// never 1 ("frames differ"), whether the frames agree or not, and before any frame is compared.
+TEST(CompareCommand, AnUnwritableReportFolderExitsTwoNamingIt) {
+  const fs::path dir = fresh_dir("cmd_unwritable_out");
+  write_png(dir / "a.png", flat_image(4, 4, 0));
+  write_png(dir / "b.png", flat_image(4, 4, 200));
+  std::ofstream(dir / "plain_file") << "a file, so nothing can be created under it, not even by root\n";
+  const fs::path out = dir / "plain_file" / "report";
+  for (const std::string& other : {"a.png", "b.png"}) {
+    const CommandResult r = compare(q(dir / "a.png") + " " + q(dir / other) + " --out " + q(out));
+    EXPECT_EQ(r.status, 2) << other << "\n" << r.output;
+    EXPECT_NE(r.output.find("--out " + out.string() + ": cannot create the report folder (Not a directory)"),
+              std::string::npos)
+        << r.output;
+    EXPECT_EQ(r.output.find("compare: FAIL"), std::string::npos) << r.output;
+  }
 }
 
 }  // namespace

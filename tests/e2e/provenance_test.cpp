@@ -95,7 +95,7 @@ TEST_F(Provenance, RenderRefusesCachesMadeWithOtherKeysOrUnfinished) {
   ASSERT_EQ(run_spume("simulate " + args()).status, 0);
   CommandResult r = run_spume("render " + args("--set diffuse.drag=0.9"));
   EXPECT_EQ(r.status, 1) << r.output;
-  EXPECT_TRUE(contains(r.output, "diffuse.drag: absent -> 0.9")) << r.output;
+  EXPECT_TRUE(contains(r.output, "diffuse.drag: 0.5 -> 0.9")) << r.output;  // the default drag, as used
   EXPECT_TRUE(contains(r.output, "spume simulate")) << r.output;
   EXPECT_FALSE(fs::exists(png(1)));
 
@@ -108,7 +108,7 @@ TEST_F(Provenance, RenderRefusesCachesMadeWithOtherKeysOrUnfinished) {
   // ... and the old keys no longer match the caches.
   r = run_spume("render " + args());
   EXPECT_EQ(r.status, 1) << r.output;
-  EXPECT_TRUE(contains(r.output, "diffuse.seed: 2 -> absent")) << r.output;
+  EXPECT_TRUE(contains(r.output, "diffuse.seed: 2 -> 1")) << r.output;  // back to the default seed
 
   // A simulation that was killed leaves no record: its caches are refused as unfinished.
   fs::remove(out("diffuse/record.json"));
