@@ -86,7 +86,7 @@ TEST(GlTankWalls, WallsInShadowStayDarkUpToTheEdgeWhereTheyMeet) {
   for (bool mirrored : {false, true}) {
     SCOPED_TRACE(mirrored ? "the right wall shades (sun towards +x)" : "the left wall shades (sun towards -x)");
     const TankCorner c(mirrored);
-    const std::vector<SolidMesh> meshes = solid_meshes(c.solids, c.cam.position);
+    const std::vector<SolidMesh> meshes = solid_meshes(c.solids, c.cam.position, c.env.sun_direction);
     ASSERT_EQ(meshes.size(), 1u);
     SurfaceScene scene;
     scene.environment = c.env;
