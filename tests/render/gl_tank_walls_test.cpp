@@ -32,10 +32,11 @@ float luminance(const Vec3f& c) { return 0.2126f * c.x() + 0.7152f * c.y() + 0.0
 //    shadow for d <= 0.1 and z <= 0.6.
 // So every pixel that sees one of these three patches must show the shadowed colour
 // albedo * irradiance(n, visibility 0) / pi, whatever the distance to the edges. A light leak along an
-// edge shows the lit colour (the sun adds 2.3 * 0.64 to the back wall's irradiance of about 1.5: the
-// back wall would be about twice as bright) and a crack the ground behind the tank; the margin of a
-// quarter of the lit-minus-shadowed difference passes only a shadow, and is far above the 16-bit
-// float targets' rounding (1e-3 relative).
+// edge shows the lit colour (the sun adds about 2.2 x 0.64 = 1.4 to the back wall's irradiance of
+// about 0.9 from sky and ground: 2.6 times as bright) and a crack the ground behind the tank; the
+// margin of a quarter of the lit-minus-shadowed difference passes only a shadow, and is far above the
+// 16-bit float targets' rounding (1e-3 relative).
+//
 // Mirrored (x -> 1 - x, the sun towards +x), the right wall shades the back wall and the floor.
 struct TankCorner {
   bool mirrored;
