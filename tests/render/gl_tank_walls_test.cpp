@@ -93,8 +93,8 @@ TEST(GlTankWalls, WallsInShadowStayDarkUpToTheEdgeWhereTheyMeet) {
     scene.environment = c.env;
     scene.solids.push_back(scene_solid(meshes[0]));
     const SurfaceImage img = pass.render(scene, c.cam);
-    write_png(std::filesystem::path(SPUME_OUT_DIR) / "tests" / (mirrored ? "gl_tank_corner_right.png" : "gl_tank_corner.png"),
-              to_srgb8(img.colour));
+    const char* name = mirrored ? "gl_tank_corner_right.png" : "gl_tank_corner.png";
+    write_png(std::filesystem::path(SPUME_OUT_DIR) / "tests" / name, to_srgb8(img.colour));
 
     const Vec3f albedo = meshes[0].albedo;
     const float pi = std::numbers::pi_v<float>;
