@@ -73,7 +73,7 @@ struct SurfacePass::Gpu {
   GLuint empty_vao = 0, env_ubo = 0, frame_ubo = 0;
   GpuMesh fluid, ground_quad;
   SunShadow shadow;
-  std::vector<std::unique_ptr<GpuMesh>> solids;
+  std::vector<std::unique_ptr<GpuMesh>> solids, slabs;  // slabs: the walls' shadow casters
   int width = 0, height = 0;
   // Targets: opaque (A), water back faces (B), water front faces' normals (G) and the final image (C),
   // G and C sharing a depth-stencil buffer whose stencil marks the water's pixels.
@@ -194,17 +194,23 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
     proj.row(1) *= -1.0f;
     const Eigen::Matrix4f view = cam.view_matrix(), vp = proj * view;
 
-    // Solids to the GPU, then their shadow map.
+    // Solids (and the slabs that cast the shadows of walls) to the GPU, then their shadow map.
     while (g.solids.size() < scene.solids.size()) g.solids.push_back(std::make_unique<GpuMesh>());
+    if (g.slabs.size() < scene.solids.size()) g.slabs.resize(scene.solids.size());  // made when needed
     std::vector<SunShadow::Caster> casters;
     for (size_t i = 0; i < scene.solids.size(); ++i) {
       const SceneSolid& s = scene.solids[i];
       if (!s.mesh || s.mesh->empty()) continue;
       g.solids[i]->upload(*s.mesh);
-      SunShadow::Caster c{g.solids[i].get(), s.offset, {}};
-      for (const Vec3f& v : s.mesh->vertices) c.bounds.extend(v + s.offset);
-      casters.push_back(c);
       st.triangles += s.mesh->triangle_count();
+      const bool slabs = s.shadow_caster && !s.shadow_caster->empty();
+      if (slabs) {
+        if (!g.slabs[i]) g.slabs[i] = std::make_unique<GpuMesh>();
+        g.slabs[i]->upload(*s.shadow_caster);
+      }
+      SunShadow::Caster c{slabs ? g.slabs[i].get() : g.solids[i].get(), s.offset, {}, slabs};
+      for (const Vec3f& v : (slabs ? s.shadow_caster : s.mesh)->vertices) c.bounds.extend(v + s.offset);
+      casters.push_back(c);
     }
     if (scene.fluid && !scene.fluid->empty()) {
       g.fluid.upload(*scene.fluid);

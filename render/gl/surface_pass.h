@@ -30,6 +30,11 @@ struct SceneSolid {
   const TriangleMesh* mesh = nullptr;         // drawn two-sided (a tank is seen from inside)
   Vec3f albedo = Vec3f(0.55f, 0.55f, 0.55f);  // linear diffuse reflectance
   Vec3f offset = Vec3f::Zero();               // m, translation at this frame (kinematic solids)
+  // For walls of no thickness: what casts the sun's shadow instead of `mesh`, thickened in the shadow
+  // map (a wall that shades the wall it meets would otherwise let light leak along their edge; see
+  // SunShadow::kWallTexels): each vertex moves by its normal times a few texels; zero normals stay.
+  // Null: `mesh` casts the shadow as it is (closed solids).
+  const TriangleMesh* shadow_caster = nullptr;
 };
 
 struct SurfaceScene {

@@ -21,6 +21,10 @@ SurfacePassOptions pass_options(const RenderSettings& s) {
 
 }  // namespace
 
+SceneSolid scene_solid(const SolidMesh& s) {
+  return SceneSolid{&s.mesh, s.albedo, Vec3f::Zero(), s.shadow_caster.empty() ? nullptr : &s.shadow_caster};
+}
+
 FrameRenderer::FrameRenderer(RenderSettings settings)
     : settings_(std::move(settings)), surface_pass_(pass_options(settings_)) {
   if (settings_.camera.empty()) fail("render: no camera (the caller frames the scene when the scene has none)");
@@ -51,7 +55,7 @@ ImageRGB8 FrameRenderer::render(const FrameInputs& in, FrameReport* report) {
   scene.water = settings_.water;
   TriangleMesh opaque;
   for (const SolidMesh& s : in.solids) {
-    scene.solids.push_back(SceneSolid{&s.mesh, s.albedo, Vec3f::Zero()});
+    scene.solids.push_back(scene_solid(s));
     opaque.append(s.mesh);
   }
   auto t0 = Clock::now();

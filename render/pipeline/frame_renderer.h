@@ -18,7 +18,13 @@ namespace spume {
 struct SolidMesh {
   TriangleMesh mesh;  // world space at this frame, m
   Vec3f albedo = Vec3f(0.55f, 0.55f, 0.55f);
+  // Walls of no thickness (a tank's) cast the sun's shadow from this instead (SceneSolid::shadow_caster).
+  // Empty: `mesh` casts it.
+  TriangleMesh shadow_caster;
 };
+
+// The surface pass's view of a solid (pointing into `s`, which must outlive it).
+SceneSolid scene_solid(const SolidMesh& s);
 
 struct FrameInputs {
   int index = 0;

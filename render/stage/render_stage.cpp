@@ -137,7 +137,8 @@ LoadedFrame load_frame(PreparedRender& p, int f) {
     }
     if (p.settings.draw_solids) {
       Camera camera = camera_at(p.settings.camera, frame.time, p.settings.width, p.settings.height);
-      frame.solids = solid_meshes(solids_at_time(p.scene->solids, p.scene->bodies, frame.time), camera.position);
+      frame.solids = solid_meshes(solids_at_time(p.scene->solids, p.scene->bodies, frame.time), camera.position,
+                                  p.settings.environment.sun_direction);
     }
     return frame;
   });

@@ -10,7 +10,8 @@
 
 namespace spume {
 
-// `solids` at the frame's time (SolidSet::at_time), seen from `eye`.
-std::vector<SolidMesh> solid_meshes(const SolidSet& solids, const Vec3f& eye);
+// `solids` at the frame's time (SolidSet::at_time), seen from `eye`, lit from `sun_direction`
+// (towards the sun: which walls a tank's shadow caster thickens).
+std::vector<SolidMesh> solid_meshes(const SolidSet& solids, const Vec3f& eye, const Vec3f& sun_direction);
 
 }  // namespace spume
