@@ -65,6 +65,12 @@ SceneInputs read_scene_inputs(const SimScene& scene, const std::filesystem::path
   if (const std::vector<int> missing = missing_frames(frames); !missing.empty() && scene.allow_gaps)
     in.notes.push_back(str("fluid.allow_gaps: ", missing.size(), " missing fluid frame", missing.size() > 1 ? "s" : "",
                            " (the first is ", missing.front(), ") interpolated between the frames on either side"));
+  if (!solver) {
+    // The radius first: every later check (tank walls within 2r, inferred planes) is measured in it.
+    check_particle_spacing(scene.fluid, in.survey.spacing, in.survey.frames.front().particles);
+    const std::string warning = spacing_warning(scene.fluid.particle_radius, in.survey.spacing);
+    if (!warning.empty()) in.notes.push_back(warning);
+  }
   in.solids = scene.solids;
   if (!solver) {
     // Before a tank is inferred: only the tanks the scene gives are checked.
@@ -101,11 +107,6 @@ SceneInputs read_scene_inputs(const SimScene& scene, const std::filesystem::path
     for (Solid& s : solids)
       if (s.kind == Solid::Kind::Tank) s.wall_thickness = 2.0f * scene.fluid.support_radius;
     in.solids = SolidSet(std::move(solids));
-  }
-  if (!solver) {
-    check_particle_spacing(scene.fluid, in.survey.spacing, in.survey.frames.front().particles);
-    const std::string warning = spacing_warning(scene.fluid.particle_radius, in.survey.spacing);
-    if (!warning.empty()) in.notes.push_back(warning);
   }
 
   SimScene resolved = scene;

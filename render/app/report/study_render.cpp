@@ -11,6 +11,7 @@
 #include "convergence_fit.h"
 #include "core/error.h"
 #include "image/image.h"
+#include "pipeline/frame_renderer.h"
 #include "report_scene.h"
 #include "surface/reconstruct.h"
 #include "volume/composite.h"
@@ -69,7 +70,7 @@ StudyResult study_render(const StudyContext& c) {
   scene.fluid = water.empty() ? nullptr : &water;
   scene.environment = settings.environment;
   scene.water = settings.water;
-  for (const SolidMesh& s : loaded.solids) scene.solids.push_back({&s.mesh, s.albedo, Vec3f::Zero()}), opaque.append(s.mesh);
+  for (const SolidMesh& s : loaded.solids) scene.solids.push_back(scene_solid(s)), opaque.append(s.mesh);
   SurfacePassOptions pass_options;
   pass_options.supersample = settings.supersample;
   SurfacePass pass(pass_options);
