@@ -11,13 +11,13 @@
 #include <filesystem>
 #include <string>
 
-#include "cli_args.h"
-#include "commands.h"
-#include "compare/compare_report.h"
-#include "compare/summary_files.h"
-#include "compare/threshold_args.h"
-#include "core/parallel.h"
-#include "core/progress.h"
+#include "render/app/cli/cli_args.h"
+#include "render/app/commands.h"
+#include "render/app/compare/compare_report.h"
+#include "render/app/compare/summary_files.h"
+#include "render/app/compare/threshold_args.h"
+#include "sim/core/parallel.h"
+#include "sim/core/progress.h"
 
 namespace spume {
 namespace {

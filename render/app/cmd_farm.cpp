@@ -8,15 +8,15 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "cli_args.h"
-#include "commands.h"
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "farm/farm_plan.h"
-#include "farm/slurm_script.h"
-#include "pipeline/simulate_scene.h"
-#include "stage/render_stage.h"
-#include "scene_args.h"
+#include "render/app/cli/cli_args.h"
+#include "render/app/commands.h"
+#include "sim/core/atomic_file.h"
+#include "sim/core/error.h"
+#include "render/app/farm/farm_plan.h"
+#include "render/app/farm/slurm_script.h"
+#include "sim/pipeline/simulate_scene.h"
+#include "render/stage/render_stage.h"
+#include "render/app/scene/scene_args.h"
 
 namespace spume {
 namespace {

@@ -7,9 +7,9 @@
 #include <map>
 #include <set>
 
-#include "commands.h"
-#include "core/error.h"
-#include "io/particle_file.h"
+#include "render/app/commands.h"
+#include "sim/core/error.h"
+#include "sim/io/particle_file.h"
 
 namespace spume {
 namespace {

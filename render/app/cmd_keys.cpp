@@ -2,9 +2,9 @@
 // declarations themselves (keys/key_spec.h), so a user need not open the README.
 #include <cstdio>
 
-#include "commands.h"
-#include "core/error.h"
-#include "keys/key_catalog.h"
+#include "render/app/commands.h"
+#include "sim/core/error.h"
+#include "render/keys/key_catalog.h"
 
 namespace spume {
 namespace {

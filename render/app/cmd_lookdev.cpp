@@ -2,16 +2,16 @@
 // labelled contact sheet -- look-dev of spray vs foam radii without re-simulating.
 #include <cstdio>
 
-#include "cli_args.h"
-#include "commands.h"
-#include "core/error.h"
-#include "core/progress.h"
-#include "image/contact_sheet.h"
-#include "image/png_io.h"
-#include "scene_render.h"
-#include "stage/render_stage.h"
-#include "scene_args.h"
-#include "scene_lock.h"
+#include "render/app/cli/cli_args.h"
+#include "render/app/commands.h"
+#include "sim/core/error.h"
+#include "sim/core/progress.h"
+#include "render/image/contact_sheet.h"
+#include "render/image/png_io.h"
+#include "render/app/scene/scene_render.h"
+#include "render/stage/render_stage.h"
+#include "render/app/scene/scene_args.h"
+#include "render/app/scene/scene_lock.h"
 
 namespace spume {
 namespace {

@@ -4,16 +4,16 @@
 
 #include <limits>
 
-#include "cli_args.h"
-#include "core/frame_spec.h"
-#include "commands.h"
-#include "core/error.h"
-#include "pipeline/simulate_scene.h"
-#include "movie.h"
-#include "scene_render.h"
-#include "stage/render_stage.h"
-#include "scene_args.h"
-#include "scene_lock.h"
+#include "render/app/cli/cli_args.h"
+#include "sim/core/frame_spec.h"
+#include "render/app/commands.h"
+#include "sim/core/error.h"
+#include "sim/pipeline/simulate_scene.h"
+#include "render/app/movie.h"
+#include "render/app/scene/scene_render.h"
+#include "render/stage/render_stage.h"
+#include "render/app/scene/scene_args.h"
+#include "render/app/scene/scene_lock.h"
 
 namespace spume {
 namespace {

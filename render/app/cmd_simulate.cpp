@@ -1,12 +1,12 @@
 // spume simulate: the simulation stages on their own (fluid solver for solver scenes, then diffuse).
 #include <cstdio>
 
-#include "cli_args.h"
-#include "commands.h"
-#include "core/error.h"
-#include "pipeline/simulate_scene.h"
-#include "scene_args.h"
-#include "scene_lock.h"
+#include "render/app/cli/cli_args.h"
+#include "render/app/commands.h"
+#include "sim/core/error.h"
+#include "sim/pipeline/simulate_scene.h"
+#include "render/app/scene/scene_args.h"
+#include "render/app/scene/scene_lock.h"
 
 namespace spume {
 namespace {

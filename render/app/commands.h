@@ -2,7 +2,7 @@
 // The spume commands. Each is its help (usage, options) and a function that runs it on the parsed
 // command line and returns the exit status; main parses, answers -h/--help, and reports what is
 // thrown: spume::Error exits 1, cli::UsageError 2, anything else 3 (cli_args.h).
-#include "cli_help.h"
+#include "render/app/cli/cli_help.h"
 
 namespace spume {
 

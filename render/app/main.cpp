@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "commands.h"
-#include "core/error.h"
-#include "core/params.h"
-#include "version_info.h"
+#include "render/app/commands.h"
+#include "sim/core/error.h"
+#include "sim/core/params.h"
+#include "render/app/version_info.h"
 
 namespace spume {
 namespace {

@@ -1,9 +1,9 @@
-#include "movie.h"
+#include "render/app/movie.h"
 
 #include <cstdlib>
 #include <regex>
 
-#include "core/error.h"
+#include "sim/core/error.h"
 
 namespace spume {
 namespace {

@@ -1,4 +1,4 @@
-#include "version_info.h"
+#include "render/app/version_info.h"
 
 #include <embree3/rtcore_config.h>
 #include <GL/osmesa.h>
@@ -7,8 +7,8 @@
 
 #include <Eigen/Core>
 
-#include "core/error.h"
-#include "gl/osmesa_context.h"
+#include "sim/core/error.h"
+#include "render/gl/osmesa_context.h"
 
 namespace spume {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <Eigen/Core>
 
-#include "core/vec.h"
+#include "sim/core/vec.h"
 
 namespace spume {
 

@@ -1,4 +1,4 @@
-#include "environment.h"
+#include "render/gl/environment.h"
 
 #include <algorithm>
 #include <cmath>

@@ -5,8 +5,8 @@
 // white on screen; a white diffuse surface facing a high sun reads about 0.8.
 #include <string>
 
-#include "core/vec.h"
-#include "keys/render_keys.h"
+#include "sim/core/vec.h"
+#include "render/keys/render_keys.h"
 
 namespace spume {
 

@@ -1,9 +1,9 @@
-#include "gl_objects.h"
+#include "render/gl/gl_objects.h"
 
 #include <utility>
 
-#include "core/error.h"
-#include "osmesa_context.h"
+#include "sim/core/error.h"
+#include "render/gl/osmesa_context.h"
 
 namespace spume {
 namespace {

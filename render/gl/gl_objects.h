@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "gl_api.h"
-#include "surface/triangle_mesh.h"
+#include "render/gl/gl_api.h"
+#include "render/surface/triangle_mesh.h"
 
 namespace spume {
 

@@ -1,10 +1,10 @@
-#include "osmesa_context.h"
+#include "render/gl/osmesa_context.h"
 
 #include <cstdlib>
 #include <string>
 
-#include "core/error.h"
-#include "gl_api.h"
+#include "sim/core/error.h"
+#include "render/gl/gl_api.h"
 
 namespace spume {
 

@@ -1,9 +1,9 @@
-#include "sun_shadow.h"
+#include "render/gl/sun_shadow.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "osmesa_context.h"
+#include "render/gl/osmesa_context.h"
 
 namespace spume {
 namespace {

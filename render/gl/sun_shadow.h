@@ -5,8 +5,8 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "core/vec.h"
-#include "gl_objects.h"
+#include "sim/core/vec.h"
+#include "render/gl/gl_objects.h"
 
 namespace spume {
 

@@ -1,4 +1,4 @@
-#include "surface_pass.h"
+#include "render/gl/surface_pass.h"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -6,12 +6,12 @@
 #include <cmath>
 #include <cstring>
 
-#include "core/error.h"
-#include "core/parallel.h"
-#include "gl_objects.h"
-#include "sun_shadow.h"
-#include "surface/mesh_primitives.h"
-#include "surface_shaders.h"
+#include "sim/core/error.h"
+#include "sim/core/parallel.h"
+#include "render/gl/gl_objects.h"
+#include "render/gl/sun_shadow.h"
+#include "render/surface/mesh_primitives.h"
+#include "render/gl/surface_shaders.h"
 
 namespace spume {
 namespace {

@@ -18,11 +18,11 @@
 #include <memory>
 #include <vector>
 
-#include "camera/camera.h"
-#include "environment.h"
-#include "image/image.h"
-#include "osmesa_context.h"
-#include "surface/triangle_mesh.h"
+#include "render/camera/camera.h"
+#include "render/gl/environment.h"
+#include "render/image/image.h"
+#include "render/gl/osmesa_context.h"
+#include "render/surface/triangle_mesh.h"
 
 namespace spume {
 

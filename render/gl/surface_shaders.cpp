@@ -1,7 +1,7 @@
-#include "surface_shaders.h"
+#include "render/gl/surface_shaders.h"
 
-#include "environment.h"
-#include "sun_shadow.h"
+#include "render/gl/environment.h"
+#include "render/gl/sun_shadow.h"
 
 namespace spume::shaders {
 namespace {

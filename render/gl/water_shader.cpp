@@ -5,7 +5,7 @@
 // normal and depth, and one full-screen pass shades each water pixel once. llvmpipe shades whole 4x4
 // blocks, so shading the marching-cubes triangles (a few pixels each) directly would run the costly
 // shader on several times as many pixels as it colours.
-#include "surface_shaders.h"
+#include "render/gl/surface_shaders.h"
 
 namespace spume::shaders {
 

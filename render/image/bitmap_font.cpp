@@ -1,9 +1,9 @@
-#include "bitmap_font.h"
+#include "render/image/bitmap_font.h"
 
 #include <algorithm>
 #include <limits>
 
-#include "core/error.h"
+#include "sim/core/error.h"
 
 namespace spume {
 namespace {

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "image.h"
+#include "render/image/image.h"
 
 namespace spume {
 

@@ -1,9 +1,9 @@
-#include "contact_sheet.h"
+#include "render/image/contact_sheet.h"
 
 #include <algorithm>
 #include <cstring>
 
-#include "core/error.h"
+#include "sim/core/error.h"
 
 namespace spume {
 namespace {

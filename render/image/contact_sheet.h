@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "bitmap_font.h"
-#include "image.h"
+#include "render/image/bitmap_font.h"
+#include "render/image/image.h"
 
 namespace spume {
 

@@ -1,12 +1,12 @@
-#include "difference_maps.h"
+#include "render/image/difference_maps.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
 
-#include "core/error.h"
-#include "thumbnail.h"
+#include "sim/core/error.h"
+#include "render/image/thumbnail.h"
 
 namespace spume {
 namespace {

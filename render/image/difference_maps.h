@@ -3,8 +3,8 @@
 // a heat map of each pixel's largest channel difference over a dimmed grey copy of the reference.
 #include <filesystem>
 
-#include "bitmap_font.h"
-#include "image.h"
+#include "render/image/bitmap_font.h"
+#include "render/image/image.h"
 
 namespace spume {
 

@@ -1,10 +1,10 @@
-#include "image.h"
+#include "render/image/image.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 
-#include "core/parallel.h"
+#include "sim/core/parallel.h"
 
 namespace spume {
 

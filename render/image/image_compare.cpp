@@ -1,11 +1,11 @@
-#include "image_compare.h"
+#include "render/image/image_compare.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
 
-#include "core/error.h"
+#include "sim/core/error.h"
 
 namespace spume {
 namespace {

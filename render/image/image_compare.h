@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <string>
 
-#include "image.h"
+#include "render/image/image.h"
 
 namespace spume {
 

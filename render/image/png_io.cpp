@@ -1,4 +1,4 @@
-#include "png_io.h"
+#include "render/image/png_io.h"
 
 #include <png.h>
 
@@ -8,8 +8,8 @@
 #include <iterator>
 #include <optional>
 
-#include "core/atomic_file.h"
-#include "core/error.h"
+#include "sim/core/atomic_file.h"
+#include "sim/core/error.h"
 
 namespace spume {
 namespace {

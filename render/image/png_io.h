@@ -6,13 +6,13 @@
 #include <string>
 #include <vector>
 
-#include "image.h"
+#include "render/image/image.h"
 
 namespace spume {
 
 // 8-bit RGB, no interlace. Creates missing parent directories. Throws Error naming `path`.
 // `record`, when given, is stored in a tEXt chunk "spume" before the pixels: what the frame was made
-// from (render/app/frame_record.h), read back without decoding the image by read_png_record.
+// from (the frame record, render/stage/render_stage.h), read back without decoding the image by read_png_record.
 void write_png(const std::filesystem::path& path, const ImageRGB8& image, const std::string& record = "");
 
 // The "spume" text of a PNG written by write_png; nullopt for a missing or unreadable file or one

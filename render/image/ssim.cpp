@@ -1,11 +1,11 @@
-#include "ssim.h"
+#include "render/image/ssim.h"
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include "core/error.h"
-#include "core/parallel.h"
+#include "sim/core/error.h"
+#include "sim/core/parallel.h"
 
 namespace spume {
 

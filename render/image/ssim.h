@@ -10,7 +10,7 @@
 // keeps the luminance still counts.
 #include <array>
 
-#include "image.h"
+#include "render/image/image.h"
 
 namespace spume {
 

@@ -1,8 +1,8 @@
-#include "thumbnail.h"
+#include "render/image/thumbnail.h"
 
 #include <algorithm>
 
-#include "core/error.h"
+#include "sim/core/error.h"
 
 namespace spume {
 namespace {

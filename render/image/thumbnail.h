@@ -1,6 +1,6 @@
 #pragma once
 // Small copies of frames for reports that list hundreds of frames.
-#include "image.h"
+#include "render/image/image.h"
 
 namespace spume {
 

@@ -1,10 +1,10 @@
-#include "key_catalog.h"
+#include "render/keys/key_catalog.h"
 
 #include <algorithm>
 
-#include "keys/diffuse_keys.h"
-#include "keys/render_keys.h"
-#include "keys/scene_keys.h"
+#include "sim/keys/diffuse_keys.h"
+#include "render/keys/render_keys.h"
+#include "sim/keys/scene_keys.h"
 
 namespace spume {
 namespace {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "keys/key_spec.h"
+#include "sim/keys/key_spec.h"
 
 namespace spume {
 

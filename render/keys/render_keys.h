@@ -4,7 +4,7 @@
 // render keys at all still renders something sensible.
 #include <array>
 
-#include "keys/key_spec.h"
+#include "sim/keys/key_spec.h"
 
 namespace spume::keys::render {
 

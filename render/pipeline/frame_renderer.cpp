@@ -1,11 +1,11 @@
-#include "frame_renderer.h"
+#include "render/pipeline/frame_renderer.h"
 
 #include <chrono>
 
-#include "core/error.h"
-#include "surface/reconstruct.h"
-#include "volume/composite.h"
-#include "volume/volume_pass.h"
+#include "sim/core/error.h"
+#include "render/surface/reconstruct.h"
+#include "render/volume/composite.h"
+#include "render/volume/volume_pass.h"
 
 namespace spume {
 namespace {

@@ -7,11 +7,11 @@
 #include <span>
 #include <vector>
 
-#include "camera/camera.h"
-#include "gl/surface_pass.h"
-#include "image/image.h"
-#include "render_settings.h"
-#include "surface/triangle_mesh.h"
+#include "render/camera/camera.h"
+#include "render/gl/surface_pass.h"
+#include "render/image/image.h"
+#include "render/pipeline/render_settings.h"
+#include "render/surface/triangle_mesh.h"
 
 namespace spume {
 

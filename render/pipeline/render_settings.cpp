@@ -1,4 +1,4 @@
-#include "render_settings.h"
+#include "render/pipeline/render_settings.h"
 
 #include <algorithm>
 #include <cctype>
@@ -6,9 +6,9 @@
 
 #include <filesystem>
 
-#include "core/error.h"
-#include "io/frame_pattern.h"
-#include "keys/render_keys.h"
+#include "sim/core/error.h"
+#include "sim/io/frame_pattern.h"
+#include "render/keys/render_keys.h"
 
 namespace spume {
 namespace {

@@ -7,12 +7,12 @@
 #include <string>
 #include <vector>
 
-#include "camera/camera.h"
-#include "core/params.h"
-#include "gl/environment.h"
-#include "surface/reconstruct.h"
-#include "volume/volume_types.h"
-#include "keys/render_keys.h"
+#include "render/camera/camera.h"
+#include "sim/core/params.h"
+#include "render/gl/environment.h"
+#include "render/surface/reconstruct.h"
+#include "render/volume/volume_types.h"
+#include "render/keys/render_keys.h"
 
 namespace spume {
 

@@ -3,15 +3,15 @@
 // (io/cache_layout.h), which frames it has and where their fluid comes from, the solids and the
 // dynamic bodies' track, the fluid's bounds over the whole sequence (camera, ground), and a digest of
 // everything the simulation was made from (part of each frame's record). The spume command builds it
-// from the simulation scene (render/app/scene_render.h); the stage only reads caches.
+// from the simulation scene (render/app/scene/scene_render.h); the stage only reads caches.
 #include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "geometry/body_track.h"
-#include "geometry/solids.h"
-#include "io/fluid_source.h"
+#include "sim/geometry/body_track.h"
+#include "sim/geometry/solids.h"
+#include "sim/io/fluid_source.h"
 
 namespace spume {
 

@@ -1,20 +1,20 @@
-#include "render_stage.h"
+#include "render/stage/render_stage.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 
-#include "core/error.h"
-#include "core/frame_spec.h"
-#include "core/progress.h"
-#include "image/png_io.h"
-#include "io/cache_layout.h"
-#include "io/file_identity.h"
-#include "io/frame_pattern.h"
-#include "io/spume_cache.h"
-#include "stage/render_stats.h"
-#include "stage/solid_meshes.h"
+#include "sim/core/error.h"
+#include "sim/core/frame_spec.h"
+#include "sim/core/progress.h"
+#include "render/image/png_io.h"
+#include "sim/io/cache_layout.h"
+#include "sim/io/file_identity.h"
+#include "sim/io/frame_pattern.h"
+#include "sim/io/spume_cache.h"
+#include "render/stage/render_stats.h"
+#include "render/stage/solid_meshes.h"
 
 namespace spume {
 namespace {

@@ -15,9 +15,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "pipeline/frame_renderer.h"
-#include "pipeline/render_settings.h"
-#include "stage/render_scene.h"
+#include "render/pipeline/frame_renderer.h"
+#include "render/pipeline/render_settings.h"
+#include "render/stage/render_scene.h"
 
 namespace spume {
 

@@ -1,4 +1,4 @@
-#include "render_stats.h"
+#include "render/stage/render_stats.h"
 
 #include <algorithm>
 #include <charconv>
@@ -7,10 +7,10 @@
 #include <map>
 #include <string>
 
-#include "core/atomic_file.h"
-#include "core/output_lock.h"
-#include "core/error.h"
-#include "io/cache_layout.h"
+#include "sim/core/atomic_file.h"
+#include "sim/core/output_lock.h"
+#include "sim/core/error.h"
+#include "sim/io/cache_layout.h"
 
 namespace spume {
 namespace {

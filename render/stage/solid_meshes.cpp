@@ -1,6 +1,6 @@
-#include "solid_meshes.h"
+#include "render/stage/solid_meshes.h"
 
-#include "surface/mesh_primitives.h"
+#include "render/surface/mesh_primitives.h"
 
 namespace spume {
 namespace {

@@ -5,8 +5,8 @@
 // pass nor as opaque blockers of the volume pass.
 #include <vector>
 
-#include "pipeline/frame_renderer.h"
-#include "geometry/solids.h"
+#include "render/pipeline/frame_renderer.h"
+#include "sim/geometry/solids.h"
 
 namespace spume {
 

@@ -1,4 +1,4 @@
-#include "colour_field.h"
+#include "render/surface/colour_field.h"
 
 #include <tbb/parallel_sort.h>
 
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/parallel.h"
+#include "sim/core/parallel.h"
 
 namespace spume {
 

@@ -10,8 +10,8 @@
 #include <span>
 #include <vector>
 
-#include "core/vec.h"
-#include "sparse_bins.h"
+#include "sim/core/vec.h"
+#include "render/surface/sparse_bins.h"
 
 namespace spume {
 

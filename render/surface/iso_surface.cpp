@@ -1,12 +1,12 @@
-#include "iso_surface.h"
+#include "render/surface/iso_surface.h"
 
 #include <algorithm>
 #include <array>
 
-#include "core/error.h"
-#include "core/parallel.h"
-#include "marching_cubes_table.h"
-#include "outward_normals.h"
+#include "sim/core/error.h"
+#include "sim/core/parallel.h"
+#include "render/surface/marching_cubes_table.h"
+#include "render/surface/outward_normals.h"
 
 namespace spume {
 namespace {

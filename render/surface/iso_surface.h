@@ -2,8 +2,8 @@
 // Marching cubes over a ColourField's sparse lattice: the closed iso-surface c = iso as an indexed
 // triangle mesh with one vertex per crossing lattice edge (so neighbouring cells share vertices and
 // the mesh is watertight) and normals from the field's analytic gradient at each vertex.
-#include "colour_field.h"
-#include "triangle_mesh.h"
+#include "render/surface/colour_field.h"
+#include "render/surface/triangle_mesh.h"
 
 namespace spume {
 

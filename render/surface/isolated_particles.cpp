@@ -1,9 +1,9 @@
-#include "isolated_particles.h"
+#include "render/surface/isolated_particles.h"
 
 #include <numeric>
 
-#include "core/parallel.h"
-#include "sparse_bins.h"
+#include "sim/core/parallel.h"
+#include "render/surface/sparse_bins.h"
 
 namespace spume {
 

@@ -5,7 +5,7 @@
 #include <span>
 #include <vector>
 
-#include "core/vec.h"
+#include "sim/core/vec.h"
 
 namespace spume {
 

@@ -1,4 +1,4 @@
-#include "marching_cubes_table.h"
+#include "render/surface/marching_cubes_table.h"
 
 #include <cassert>
 #include <stdexcept>

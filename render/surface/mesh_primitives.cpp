@@ -1,9 +1,9 @@
-#include "mesh_primitives.h"
+#include "render/surface/mesh_primitives.h"
 
 #include <cmath>
 #include <numbers>
 
-#include "core/error.h"
+#include "sim/core/error.h"
 
 namespace spume {
 

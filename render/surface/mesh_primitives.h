@@ -1,8 +1,8 @@
 #pragma once
 // Simple closed meshes for scene solids and tests, wound counter-clockwise seen from outside, with
 // outward normals.
-#include "core/vec.h"
-#include "triangle_mesh.h"
+#include "sim/core/vec.h"
+#include "render/surface/triangle_mesh.h"
 
 namespace spume {
 

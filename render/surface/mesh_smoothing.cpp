@@ -1,8 +1,8 @@
-#include "mesh_smoothing.h"
+#include "render/surface/mesh_smoothing.h"
 
 #include <algorithm>
 
-#include "core/parallel.h"
+#include "sim/core/parallel.h"
 
 namespace spume {
 namespace {

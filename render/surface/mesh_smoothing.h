@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "triangle_mesh.h"
+#include "render/surface/triangle_mesh.h"
 
 namespace spume {
 

@@ -1,4 +1,4 @@
-#include "outward_normals.h"
+#include "render/surface/outward_normals.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,13 +1,13 @@
-#include "reconstruct.h"
+#include "render/surface/reconstruct.h"
 
 #include <chrono>
 #include <cmath>
 
-#include "colour_field.h"
-#include "core/error.h"
-#include "iso_surface.h"
-#include "isolated_particles.h"
-#include "mesh_smoothing.h"
+#include "render/surface/colour_field.h"
+#include "sim/core/error.h"
+#include "render/surface/iso_surface.h"
+#include "render/surface/isolated_particles.h"
+#include "render/surface/mesh_smoothing.h"
 
 namespace spume {
 

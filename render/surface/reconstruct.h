@@ -12,9 +12,9 @@
 // optionally, Taubin smoothing takes out the particle lattice's bumps (mesh_smoothing.h).
 #include <span>
 
-#include "core/vec.h"
-#include "triangle_mesh.h"
-#include "keys/render_keys.h"
+#include "sim/core/vec.h"
+#include "render/surface/triangle_mesh.h"
+#include "render/keys/render_keys.h"
 
 namespace spume {
 

@@ -1,4 +1,4 @@
-#include "sparse_bins.h"
+#include "render/surface/sparse_bins.h"
 
 #include <tbb/parallel_sort.h>
 
@@ -7,8 +7,8 @@
 #include <cmath>
 #include <utility>
 
-#include "core/error.h"
-#include "core/parallel.h"
+#include "sim/core/error.h"
+#include "sim/core/parallel.h"
 
 namespace spume {
 

@@ -1,4 +1,4 @@
-#include "triangle_mesh.h"
+#include "render/surface/triangle_mesh.h"
 
 namespace spume {
 

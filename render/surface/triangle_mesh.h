@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/vec.h"
+#include "sim/core/vec.h"
 
 namespace spume {
 

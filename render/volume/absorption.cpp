@@ -1,4 +1,4 @@
-#include "absorption.h"
+#include "render/volume/absorption.h"
 
 #include <bit>
 #include <cmath>

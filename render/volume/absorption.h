@@ -10,9 +10,9 @@
 #include <array>
 #include <cstddef>
 
-#include "core/frames.h"
-#include "ray_sphere.h"
-#include "water_path.h"
+#include "sim/core/frames.h"
+#include "render/volume/ray_sphere.h"
+#include "render/volume/water_path.h"
 
 namespace spume {
 

@@ -1,6 +1,6 @@
-#include "composite.h"
+#include "render/volume/composite.h"
 
-#include "core/error.h"
+#include "sim/core/error.h"
 
 namespace spume {
 

@@ -1,7 +1,7 @@
 #pragma once
 // Eq. 9's compositing step: C_p = (1 - L) C_d + L C_b, in linear RGB.
-#include "image/image.h"
-#include "volume_types.h"
+#include "render/image/image.h"
+#include "render/volume/volume_types.h"
 
 namespace spume {
 

@@ -1,4 +1,4 @@
-#include "embree_scene.h"
+#include "render/volume/embree_scene.h"
 
 #include <embree3/rtcore.h>
 
@@ -7,9 +7,9 @@
 #include <mutex>
 #include <string>
 
-#include "core/error.h"
-#include "core/parallel.h"
-#include "surface/triangle_mesh.h"
+#include "sim/core/error.h"
+#include "sim/core/parallel.h"
+#include "render/surface/triangle_mesh.h"
 
 namespace spume {
 namespace {

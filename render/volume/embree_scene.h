@@ -7,9 +7,9 @@
 #include <memory>
 #include <vector>
 
-#include "core/frames.h"
-#include "volume_types.h"
-#include "water_path.h"
+#include "sim/core/frames.h"
+#include "render/volume/volume_types.h"
+#include "render/volume/water_path.h"
 
 namespace spume {
 

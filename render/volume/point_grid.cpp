@@ -1,10 +1,10 @@
-#include "point_grid.h"
+#include "render/volume/point_grid.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/error.h"
-#include "core/parallel.h"
+#include "sim/core/error.h"
+#include "sim/core/parallel.h"
 
 namespace spume {
 

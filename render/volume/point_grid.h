@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/frames.h"
+#include "sim/core/frames.h"
 
 namespace spume {
 

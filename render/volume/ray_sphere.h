@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <utility>
 
-#include "core/vec.h"
+#include "sim/core/vec.h"
 
 namespace spume {
 

@@ -1,11 +1,11 @@
-#include "screen_bins.h"
+#include "render/volume/screen_bins.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-#include "core/error.h"
-#include "core/parallel.h"
+#include "sim/core/error.h"
+#include "sim/core/parallel.h"
 
 namespace spume {
 

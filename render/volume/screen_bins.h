@@ -10,9 +10,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "camera/camera.h"
-#include "core/frames.h"
-#include "huge_buffer.h"
+#include "render/camera/camera.h"
+#include "sim/core/frames.h"
+#include "render/volume/huge_buffer.h"
 
 namespace spume {
 

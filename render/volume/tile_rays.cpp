@@ -1,10 +1,10 @@
-#include "tile_rays.h"
+#include "render/volume/tile_rays.h"
 
 #include <algorithm>
 
-#include "core/rng.h"
-#include "embree_scene.h"
-#include "ray_sphere.h"
+#include "sim/core/rng.h"
+#include "render/volume/embree_scene.h"
+#include "render/volume/ray_sphere.h"
 
 namespace spume {
 

@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "camera/camera.h"
-#include "water_path.h"
+#include "render/camera/camera.h"
+#include "render/volume/water_path.h"
 
 namespace spume {
 

@@ -1,4 +1,4 @@
-#include "volume_pass.h"
+#include "render/volume/volume_pass.h"
 
 #include <algorithm>
 #include <atomic>
@@ -9,14 +9,14 @@
 
 #include <tbb/enumerable_thread_specific.h>
 
-#include "absorption.h"
-#include "core/error.h"
-#include "core/parallel.h"
-#include "embree_scene.h"
-#include "point_grid.h"
-#include "screen_bins.h"
-#include "surface/triangle_mesh.h"
-#include "tile_rays.h"
+#include "render/volume/absorption.h"
+#include "sim/core/error.h"
+#include "sim/core/parallel.h"
+#include "render/volume/embree_scene.h"
+#include "render/volume/point_grid.h"
+#include "render/volume/screen_bins.h"
+#include "render/surface/triangle_mesh.h"
+#include "render/volume/tile_rays.h"
 
 namespace spume {
 namespace {

@@ -15,8 +15,8 @@
 //          filter (embree_scene.h); same chords, the bins are ~10x faster at 1M-15M spheres.
 // Colours: absorption.h. Tiles of 16x16 pixels run in parallel, each pixel written by one task
 // and computed serially, so the image is the same bytes for any thread count.
-#include "camera/camera.h"
-#include "volume_types.h"
+#include "render/camera/camera.h"
+#include "render/volume/volume_types.h"
 
 namespace spume {
 

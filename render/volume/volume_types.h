@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/frames.h"
-#include "core/vec.h"
-#include "keys/render_keys.h"
+#include "sim/core/frames.h"
+#include "sim/core/vec.h"
+#include "render/keys/render_keys.h"
 
 namespace spume {
 

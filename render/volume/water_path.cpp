@@ -1,4 +1,4 @@
-#include "water_path.h"
+#include "render/volume/water_path.h"
 
 #include <algorithm>
 #include <cmath>

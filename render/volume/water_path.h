@@ -3,7 +3,7 @@
 // dimming exp(-sigma_w * w(t)) of what is seen at distance t after travelling w(t) in water.
 #include <vector>
 
-#include "core/vec.h"
+#include "sim/core/vec.h"
 
 namespace spume {
 

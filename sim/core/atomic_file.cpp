@@ -1,4 +1,4 @@
-#include "atomic_file.h"
+#include "sim/core/atomic_file.h"
 
 #include <cstdio>
 #include <fstream>
@@ -9,7 +9,7 @@
 #include <cerrno>
 #include <cstdlib>
 
-#include "error.h"
+#include "sim/core/error.h"
 
 namespace spume {
 namespace {

@@ -1,4 +1,4 @@
-#include "frame_spec.h"
+#include "sim/core/frame_spec.h"
 
 #include <algorithm>
 #include <charconv>
@@ -6,7 +6,7 @@
 #include <limits>
 #include <string>
 
-#include "error.h"
+#include "sim/core/error.h"
 
 namespace spume {
 namespace {

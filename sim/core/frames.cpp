@@ -1,8 +1,8 @@
-#include "frames.h"
+#include "sim/core/frames.h"
 
 #include <algorithm>
 
-#include "error.h"
+#include "sim/core/error.h"
 
 namespace spume {
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "keys/scene_keys.h"
-#include "vec.h"
+#include "sim/keys/scene_keys.h"
+#include "sim/core/vec.h"
 
 namespace spume {
 

@@ -1,4 +1,4 @@
-#include "output_lock.h"
+#include "sim/core/output_lock.h"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -12,8 +12,8 @@
 #include <sstream>
 #include <thread>
 
-#include "core/atomic_file.h"
-#include "core/error.h"
+#include "sim/core/atomic_file.h"
+#include "sim/core/error.h"
 
 namespace spume {
 namespace {

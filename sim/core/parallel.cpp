@@ -1,4 +1,4 @@
-#include "parallel.h"
+#include "sim/core/parallel.h"
 
 #include <tbb/global_control.h>
 #include <tbb/info.h>

@@ -1,11 +1,11 @@
-#include "params.h"
+#include "sim/core/params.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
-#include "error.h"
+#include "sim/core/error.h"
 
 namespace spume {
 

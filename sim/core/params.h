@@ -12,8 +12,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "keys/key_spec.h"
-#include "vec.h"
+#include "sim/keys/key_spec.h"
+#include "sim/core/vec.h"
 
 namespace spume {
 

@@ -1,9 +1,9 @@
-#include "progress.h"
+#include "sim/core/progress.h"
 
 #include <cstdio>
 #include <unistd.h>
 
-#include "error.h"
+#include "sim/core/error.h"
 
 namespace spume {
 

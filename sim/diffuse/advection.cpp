@@ -1,4 +1,4 @@
-#include "advection.h"
+#include "sim/diffuse/advection.h"
 
 #include <cmath>
 

@@ -1,8 +1,8 @@
 #pragma once
 // Classification (MODEL.md §3) and per-type advection (§4) of single diffuse particles: pure
 // functions, so each is testable against its closed form.
-#include "core/frames.h"
-#include "diffuse/params.h"
+#include "sim/core/frames.h"
+#include "sim/diffuse/params.h"
 
 namespace spume {
 

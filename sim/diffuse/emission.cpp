@@ -1,14 +1,14 @@
-#include "emission.h"
+#include "sim/diffuse/emission.h"
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <numbers>
 
-#include "core/error.h"
-#include "core/parallel.h"
-#include "core/rng.h"
-#include "diffuse/kernels.h"
+#include "sim/core/error.h"
+#include "sim/core/parallel.h"
+#include "sim/core/rng.h"
+#include "sim/diffuse/kernels.h"
 
 namespace spume {
 namespace {

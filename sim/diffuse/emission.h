@@ -3,10 +3,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/rng.h"
-#include "diffuse/fluid_state.h"
-#include "diffuse/params.h"
-#include "diffuse/potentials.h"
+#include "sim/core/rng.h"
+#include "sim/diffuse/fluid_state.h"
+#include "sim/diffuse/params.h"
+#include "sim/diffuse/potentials.h"
 
 namespace spume {
 

@@ -1,10 +1,10 @@
-#include "fluid_sampling.h"
+#include "sim/diffuse/fluid_sampling.h"
 
 #include <algorithm>
 #include <bit>
 
-#include "core/parallel.h"
-#include "grid/block_buffer.h"
+#include "sim/core/parallel.h"
+#include "sim/grid/block_buffer.h"
 
 namespace spume {
 namespace {

@@ -11,8 +11,8 @@
 #include <span>
 #include <vector>
 
-#include "grid/neighbour_grid.h"
-#include "grid/radix_sort.h"
+#include "sim/grid/neighbour_grid.h"
+#include "sim/grid/radix_sort.h"
 
 namespace spume {
 

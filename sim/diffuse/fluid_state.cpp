@@ -1,9 +1,9 @@
-#include "fluid_state.h"
+#include "sim/diffuse/fluid_state.h"
 
 #include <algorithm>
 #include <numeric>
 
-#include "core/parallel.h"
+#include "sim/core/parallel.h"
 
 namespace spume {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/vec.h"
+#include "sim/core/vec.h"
 
 namespace spume {
 

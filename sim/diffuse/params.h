@@ -7,9 +7,9 @@
 #include <optional>
 #include <string_view>
 
-#include "core/vec.h"
-#include "keys/diffuse_keys.h"
-#include "keys/scene_keys.h"
+#include "sim/core/vec.h"
+#include "sim/keys/diffuse_keys.h"
+#include "sim/keys/scene_keys.h"
 
 namespace spume {
 

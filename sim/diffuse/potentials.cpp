@@ -1,13 +1,13 @@
-#include "potentials.h"
+#include "sim/diffuse/potentials.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-#include "core/parallel.h"
-#include "diffuse/kernels.h"
-#include "grid/block_buffer.h"
-#include "geometry/solid_coverage.h"
+#include "sim/core/parallel.h"
+#include "sim/diffuse/kernels.h"
+#include "sim/grid/block_buffer.h"
+#include "sim/geometry/solid_coverage.h"
 
 namespace spume {
 namespace {

@@ -4,10 +4,10 @@
 #include <span>
 #include <vector>
 
-#include "diffuse/fluid_state.h"
-#include "diffuse/params.h"
-#include "grid/neighbour_grid.h"
-#include "geometry/solids.h"
+#include "sim/diffuse/fluid_state.h"
+#include "sim/diffuse/params.h"
+#include "sim/grid/neighbour_grid.h"
+#include "sim/geometry/solids.h"
 
 namespace spume {
 

@@ -1,13 +1,13 @@
-#include "simulator.h"
+#include "sim/diffuse/simulator.h"
 
 #include <atomic>
 #include <chrono>
 
-#include "core/error.h"
-#include "core/parallel.h"
-#include "diffuse/advection.h"
-#include "diffuse/emission.h"
-#include "geometry/solid_coverage.h"
+#include "sim/core/error.h"
+#include "sim/core/parallel.h"
+#include "sim/diffuse/advection.h"
+#include "sim/diffuse/emission.h"
+#include "sim/geometry/solid_coverage.h"
 
 namespace spume {
 namespace {

@@ -6,14 +6,14 @@
 #include <array>
 #include <functional>
 
-#include "core/frames.h"
-#include "diffuse/emission.h"
-#include "diffuse/fluid_sampling.h"
-#include "diffuse/fluid_state.h"
-#include "diffuse/params.h"
-#include "diffuse/potentials.h"
-#include "grid/neighbour_grid.h"
-#include "geometry/body_track.h"
+#include "sim/core/frames.h"
+#include "sim/diffuse/emission.h"
+#include "sim/diffuse/fluid_sampling.h"
+#include "sim/diffuse/fluid_state.h"
+#include "sim/diffuse/params.h"
+#include "sim/diffuse/potentials.h"
+#include "sim/grid/neighbour_grid.h"
+#include "sim/geometry/body_track.h"
 
 namespace spume {
 

@@ -1,12 +1,12 @@
-#include "blow_up.h"
+#include "sim/fluid/blow_up.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-#include "core/error.h"
-#include "core/parallel.h"
-#include "fluid/reduce.h"
+#include "sim/core/error.h"
+#include "sim/core/parallel.h"
+#include "sim/fluid/reduce.h"
 
 namespace spume::fluid {
 namespace {

@@ -19,10 +19,10 @@
 #include <string>
 #include <vector>
 
-#include "core/vec.h"
-#include "fluid/fluid_params.h"
-#include "fluid/particles.h"
-#include "geometry/solids.h"
+#include "sim/core/vec.h"
+#include "sim/fluid/fluid_params.h"
+#include "sim/fluid/particles.h"
+#include "sim/geometry/solids.h"
 
 namespace spume::fluid {
 

@@ -1,11 +1,11 @@
-#include "boundary.h"
+#include "sim/fluid/boundary.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-#include "core/error.h"
-#include "core/parallel.h"
+#include "sim/core/error.h"
+#include "sim/core/parallel.h"
 
 namespace spume::fluid {
 

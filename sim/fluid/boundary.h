@@ -27,9 +27,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/vec.h"
-#include "grid/neighbour_grid.h"
-#include "geometry/solids.h"
+#include "sim/core/vec.h"
+#include "sim/grid/neighbour_grid.h"
+#include "sim/geometry/solids.h"
 
 namespace spume::fluid {
 

@@ -1,9 +1,9 @@
-#include "coupling.h"
+#include "sim/fluid/coupling.h"
 
 #include <algorithm>
 
-#include "core/parallel.h"
-#include "fluid/reduce.h"
+#include "sim/core/parallel.h"
+#include "sim/fluid/reduce.h"
 
 namespace spume::fluid {
 namespace {

@@ -12,11 +12,11 @@
 // result is the same for any thread count.
 #include <vector>
 
-#include "core/vec.h"
-#include "fluid/boundary.h"
-#include "fluid/fluid_params.h"
-#include "fluid/neighbours.h"
-#include "fluid/particles.h"
+#include "sim/core/vec.h"
+#include "sim/fluid/boundary.h"
+#include "sim/fluid/fluid_params.h"
+#include "sim/fluid/neighbours.h"
+#include "sim/fluid/particles.h"
 
 namespace spume::fluid {
 

@@ -1,8 +1,8 @@
-#include "fluid_params.h"
+#include "sim/fluid/fluid_params.h"
 
 #include <cmath>
 
-#include "core/error.h"
+#include "sim/core/error.h"
 
 namespace spume {
 

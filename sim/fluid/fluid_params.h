@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/vec.h"
-#include "keys/scene_keys.h"
+#include "sim/core/vec.h"
+#include "sim/keys/scene_keys.h"
 
 namespace spume {
 

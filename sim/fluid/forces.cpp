@@ -1,7 +1,7 @@
-#include "forces.h"
+#include "sim/fluid/forces.h"
 
-#include "core/parallel.h"
-#include "fluid/kernel.h"
+#include "sim/core/parallel.h"
+#include "sim/fluid/kernel.h"
 
 namespace spume::fluid {
 

@@ -14,10 +14,10 @@
 //
 // [Mon05] J. J. Monaghan, Smoothed particle hydrodynamics, Rep. Prog. Phys. 68 (2005) 1703-1759.
 // [Monaghan 1989] On the problem of penetration in particle methods, J. Comput. Phys. 82 (1989).
-#include "fluid/boundary.h"
-#include "fluid/fluid_params.h"
-#include "fluid/neighbours.h"
-#include "fluid/particles.h"
+#include "sim/fluid/boundary.h"
+#include "sim/fluid/fluid_params.h"
+#include "sim/fluid/neighbours.h"
+#include "sim/fluid/particles.h"
 
 namespace spume::fluid {
 

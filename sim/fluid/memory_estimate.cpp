@@ -1,4 +1,4 @@
-#include "memory_estimate.h"
+#include "sim/fluid/memory_estimate.h"
 
 #include <cmath>
 #include <cstdio>
@@ -6,9 +6,9 @@
 #include <sstream>
 #include <string>
 
-#include "core/error.h"
-#include "fluid/boundary.h"
-#include "fluid/particles.h"
+#include "sim/core/error.h"
+#include "sim/fluid/boundary.h"
+#include "sim/fluid/particles.h"
 
 namespace spume::fluid {
 namespace {

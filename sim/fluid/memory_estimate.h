@@ -16,8 +16,8 @@
 #include <optional>
 #include <vector>
 
-#include "fluid/fluid_params.h"
-#include "geometry/solids.h"
+#include "sim/fluid/fluid_params.h"
+#include "sim/geometry/solids.h"
 
 namespace spume::fluid {
 

@@ -1,12 +1,12 @@
-#include "neighbours.h"
+#include "sim/fluid/neighbours.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 
-#include "core/error.h"
-#include "core/parallel.h"
-#include "grid/block_buffer.h"
+#include "sim/core/error.h"
+#include "sim/core/parallel.h"
+#include "sim/grid/block_buffer.h"
 
 namespace spume::fluid {
 namespace {

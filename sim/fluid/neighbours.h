@@ -8,11 +8,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/vec.h"
-#include "fluid/boundary.h"
-#include "fluid/kernel.h"
-#include "fluid/particles.h"
-#include "grid/neighbour_grid.h"
+#include "sim/core/vec.h"
+#include "sim/fluid/boundary.h"
+#include "sim/fluid/kernel.h"
+#include "sim/fluid/particles.h"
+#include "sim/grid/neighbour_grid.h"
 
 namespace spume::fluid {
 

@@ -1,10 +1,10 @@
-#include "particles.h"
+#include "sim/fluid/particles.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/error.h"
-#include "core/parallel.h"
+#include "sim/core/error.h"
+#include "sim/core/parallel.h"
 
 namespace spume::fluid {
 

@@ -4,9 +4,9 @@
 #include <span>
 #include <vector>
 
-#include "core/vec.h"
-#include "fluid/fluid_params.h"
-#include "geometry/solids.h"
+#include "sim/core/vec.h"
+#include "sim/fluid/fluid_params.h"
+#include "sim/geometry/solids.h"
 
 namespace spume::fluid {
 

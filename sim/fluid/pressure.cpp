@@ -1,10 +1,10 @@
-#include "pressure.h"
+#include "sim/fluid/pressure.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/parallel.h"
-#include "fluid/reduce.h"
+#include "sim/core/parallel.h"
+#include "sim/fluid/reduce.h"
 
 namespace spume::fluid {
 namespace {

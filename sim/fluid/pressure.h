@@ -24,10 +24,10 @@
 // where the fluid no longer needs it expands the fluid, and residual clamping cannot take that back
 // (rms speed 3-13 cm/s after 2 s at 4000 particles, against 0.8 cm/s without; variants that also
 // let iterations lower the pressure needed relaxation and were no cheaper, or diverged).
-#include "fluid/boundary.h"
-#include "fluid/fluid_params.h"
-#include "fluid/neighbours.h"
-#include "fluid/particles.h"
+#include "sim/fluid/boundary.h"
+#include "sim/fluid/fluid_params.h"
+#include "sim/fluid/neighbours.h"
+#include "sim/fluid/particles.h"
 
 namespace spume::fluid {
 

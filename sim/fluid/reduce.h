@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "core/parallel.h"
+#include "sim/core/parallel.h"
 
 namespace spume::fluid {
 

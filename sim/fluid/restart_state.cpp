@@ -1,4 +1,4 @@
-#include "restart_state.h"
+#include "sim/fluid/restart_state.h"
 
 #include <zlib.h>
 
@@ -7,10 +7,10 @@
 #include <cstring>
 #include <ostream>
 
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "io/crc_file.h"
-#include "io/io_bytes.h"
+#include "sim/core/atomic_file.h"
+#include "sim/core/error.h"
+#include "sim/io/crc_file.h"
+#include "sim/io/io_bytes.h"
 
 namespace spume {
 namespace {

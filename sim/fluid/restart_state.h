@@ -34,7 +34,7 @@
 #include <string>
 #include <vector>
 
-#include "core/vec.h"
+#include "sim/core/vec.h"
 
 namespace spume {
 

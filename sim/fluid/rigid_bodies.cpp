@@ -1,11 +1,11 @@
-#include "rigid_bodies.h"
+#include "sim/fluid/rigid_bodies.h"
 
 #include <btBulletDynamicsCommon.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/error.h"
+#include "sim/core/error.h"
 
 namespace spume::fluid {
 namespace {

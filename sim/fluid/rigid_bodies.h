@@ -11,8 +11,8 @@
 #include <memory>
 #include <vector>
 
-#include "core/vec.h"
-#include "geometry/solids.h"
+#include "sim/core/vec.h"
+#include "sim/geometry/solids.h"
 
 namespace spume::fluid {
 

@@ -1,16 +1,16 @@
-#include "solver.h"
+#include "sim/fluid/solver.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 
-#include "core/error.h"
-#include "core/parallel.h"
-#include "fluid/forces.h"
-#include "fluid/memory_estimate.h"
-#include "fluid/pressure.h"
-#include "fluid/reduce.h"
-#include "fluid/time_step.h"
+#include "sim/core/error.h"
+#include "sim/core/parallel.h"
+#include "sim/fluid/forces.h"
+#include "sim/fluid/memory_estimate.h"
+#include "sim/fluid/pressure.h"
+#include "sim/fluid/reduce.h"
+#include "sim/fluid/time_step.h"
 
 namespace spume {
 namespace {

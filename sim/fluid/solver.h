@@ -34,18 +34,18 @@
 #include <functional>
 #include <vector>
 
-#include "core/frames.h"
-#include "fluid/blow_up.h"
-#include "fluid/boundary.h"
-#include "fluid/coupling.h"
-#include "fluid/fluid_params.h"
-#include "fluid/kernel.h"
-#include "fluid/neighbours.h"
-#include "fluid/particles.h"
-#include "fluid/restart_state.h"
-#include "fluid/rigid_bodies.h"
-#include "grid/neighbour_grid.h"
-#include "geometry/solids.h"
+#include "sim/core/frames.h"
+#include "sim/fluid/blow_up.h"
+#include "sim/fluid/boundary.h"
+#include "sim/fluid/coupling.h"
+#include "sim/fluid/fluid_params.h"
+#include "sim/fluid/kernel.h"
+#include "sim/fluid/neighbours.h"
+#include "sim/fluid/particles.h"
+#include "sim/fluid/restart_state.h"
+#include "sim/fluid/rigid_bodies.h"
+#include "sim/grid/neighbour_grid.h"
+#include "sim/geometry/solids.h"
 
 namespace spume {
 

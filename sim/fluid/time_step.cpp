@@ -1,9 +1,9 @@
-#include "time_step.h"
+#include "sim/fluid/time_step.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "fluid/reduce.h"
+#include "sim/fluid/reduce.h"
 
 namespace spume::fluid {
 

@@ -1,8 +1,8 @@
 #pragma once
 // The adaptive time step: a CFL condition with limits, and landing exactly on requested times.
-#include "fluid/fluid_params.h"
-#include "fluid/particles.h"
-#include "geometry/solids.h"
+#include "sim/fluid/fluid_params.h"
+#include "sim/fluid/particles.h"
+#include "sim/geometry/solids.h"
 
 namespace spume::fluid {
 

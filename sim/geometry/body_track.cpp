@@ -1,9 +1,9 @@
-#include "body_track.h"
+#include "sim/geometry/body_track.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/error.h"
+#include "sim/core/error.h"
 
 namespace spume {
 

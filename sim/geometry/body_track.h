@@ -4,7 +4,7 @@
 // them from this track, so all three see the cubes of a collapsing tower in the same places.
 #include <vector>
 
-#include "geometry/solids.h"
+#include "sim/geometry/solids.h"
 
 namespace spume {
 

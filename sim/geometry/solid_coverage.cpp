@@ -1,4 +1,4 @@
-#include "solid_coverage.h"
+#include "sim/geometry/solid_coverage.h"
 
 #include <algorithm>
 #include <array>

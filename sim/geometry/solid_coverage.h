@@ -8,8 +8,8 @@
 // floor, a box side); elsewhere (edges, corners, spheres, an open tank's rim, several solids) the
 // ball is integrated along a fixed set of directions with the radial part exact, which measures the
 // union of the solids, never a sum over their faces (that would count an edge twice).
-#include "core/vec.h"
-#include "geometry/solids.h"
+#include "sim/core/vec.h"
+#include "sim/geometry/solids.h"
 
 namespace spume {
 

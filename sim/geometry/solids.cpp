@@ -1,11 +1,11 @@
-#include "solids.h"
+#include "sim/geometry/solids.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
 
-#include "core/error.h"
+#include "sim/core/error.h"
 
 namespace spume {
 namespace {

@@ -12,8 +12,8 @@
 #include <limits>
 #include <vector>
 
-#include "core/vec.h"
-#include "keys/scene_keys.h"
+#include "sim/core/vec.h"
+#include "sim/keys/scene_keys.h"
 
 namespace spume {
 

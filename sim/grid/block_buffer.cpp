@@ -1,6 +1,6 @@
-#include "block_buffer.h"
+#include "sim/grid/block_buffer.h"
 
-#include "core/error.h"
+#include "sim/core/error.h"
 
 namespace spume {
 

@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "grid/neighbour_grid.h"
+#include "sim/grid/neighbour_grid.h"
 
 namespace spume {
 

@@ -1,12 +1,12 @@
-#include "neighbour_grid.h"
+#include "sim/grid/neighbour_grid.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include <tbb/parallel_sort.h>
 
-#include "core/error.h"
-#include "core/parallel.h"
+#include "sim/core/error.h"
+#include "sim/core/parallel.h"
 
 namespace spume {
 

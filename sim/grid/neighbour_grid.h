@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/vec.h"
+#include "sim/core/vec.h"
 
 namespace spume {
 

@@ -1,8 +1,8 @@
-#include "radix_sort.h"
+#include "sim/grid/radix_sort.h"
 
 #include <algorithm>
 
-#include "core/parallel.h"
+#include "sim/core/parallel.h"
 
 namespace spume {
 

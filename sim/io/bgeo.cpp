@@ -1,12 +1,12 @@
-#include "io/bgeo.h"
+#include "sim/io/bgeo.h"
 
 #include <climits>
 #include <initializer_list>
 #include <ostream>
 
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "io/io_bytes.h"
+#include "sim/core/atomic_file.h"
+#include "sim/core/error.h"
+#include "sim/io/io_bytes.h"
 
 namespace spume {
 namespace {

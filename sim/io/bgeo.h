@@ -14,9 +14,9 @@
 #include <filesystem>
 #include <vector>
 
-#include "core/frames.h"
-#include "core/vec.h"
-#include "io/point_attribute.h"
+#include "sim/core/frames.h"
+#include "sim/core/vec.h"
+#include "sim/io/point_attribute.h"
 
 namespace spume {
 

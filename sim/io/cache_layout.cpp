@@ -1,4 +1,4 @@
-#include "cache_layout.h"
+#include "sim/io/cache_layout.h"
 
 #include <cstdio>
 

@@ -9,7 +9,7 @@
 
 #include <zlib.h>
 
-#include "core/atomic_file.h"
+#include "sim/core/atomic_file.h"
 
 namespace spume {
 

@@ -1,4 +1,4 @@
-#include "file_identity.h"
+#include "sim/io/file_identity.h"
 
 #include <sys/stat.h>
 
@@ -7,7 +7,7 @@
 #include <ctime>
 #include <fstream>
 
-#include "core/error.h"
+#include "sim/core/error.h"
 
 namespace spume {
 

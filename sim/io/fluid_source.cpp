@@ -1,11 +1,11 @@
-#include "fluid_source.h"
+#include "sim/io/fluid_source.h"
 
 #include <algorithm>
 #include <unordered_map>
 
-#include "core/error.h"
-#include "io/frame_pattern.h"
-#include "io/particle_file.h"
+#include "sim/core/error.h"
+#include "sim/io/frame_pattern.h"
+#include "sim/io/particle_file.h"
 
 namespace spume {
 

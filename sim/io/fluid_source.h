@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "core/frames.h"
+#include "sim/core/frames.h"
 
 namespace spume {
 

@@ -1,4 +1,4 @@
-#include "fluid_survey.h"
+#include "sim/io/fluid_survey.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,13 +7,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "core/parallel.h"
-#include "core/progress.h"
-#include "io/frame_pattern.h"
-#include "io/particle_file.h"
-#include "io/stage_record.h"
+#include "sim/core/atomic_file.h"
+#include "sim/core/error.h"
+#include "sim/core/parallel.h"
+#include "sim/core/progress.h"
+#include "sim/io/frame_pattern.h"
+#include "sim/io/particle_file.h"
+#include "sim/io/stage_record.h"
 
 namespace spume {
 namespace {

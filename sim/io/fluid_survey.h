@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "core/vec.h"
-#include "io/file_identity.h"
+#include "sim/core/vec.h"
+#include "sim/io/file_identity.h"
 
 namespace spume {
 

@@ -1,4 +1,4 @@
-#include "io/frame_pattern.h"
+#include "sim/io/frame_pattern.h"
 
 #include <algorithm>
 #include <cctype>
@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <system_error>
 
-#include "core/error.h"
+#include "sim/core/error.h"
 
 namespace spume {
 namespace {

@@ -1,4 +1,4 @@
-#include "io/io_bytes.h"
+#include "sim/io/io_bytes.h"
 
 #include <zlib.h>
 

@@ -1,4 +1,4 @@
-#include "io/particle_file.h"
+#include "sim/io/particle_file.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,12 +7,12 @@
 #include <string_view>
 #include <system_error>
 
-#include "core/error.h"
-#include "io/bgeo.h"
-#include "io/io_bytes.h"
-#include "io/ply.h"
-#include "io/spume_cache.h"
-#include "io/vtk.h"
+#include "sim/core/error.h"
+#include "sim/io/bgeo.h"
+#include "sim/io/io_bytes.h"
+#include "sim/io/ply.h"
+#include "sim/io/spume_cache.h"
+#include "sim/io/vtk.h"
 
 namespace spume {
 namespace {

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <string>
 
-#include "core/frames.h"
+#include "sim/core/frames.h"
 
 namespace spume {
 

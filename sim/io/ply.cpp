@@ -1,13 +1,13 @@
-#include "io/ply.h"
+#include "sim/io/ply.h"
 
 #include <array>
 #include <charconv>
 #include <cmath>
 #include <ostream>
 
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "io/io_bytes.h"
+#include "sim/core/atomic_file.h"
+#include "sim/core/error.h"
+#include "sim/io/io_bytes.h"
 
 namespace spume {
 namespace {

@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <vector>
 
-#include "core/frames.h"
-#include "io/point_attribute.h"
+#include "sim/core/frames.h"
+#include "sim/io/point_attribute.h"
 
 namespace spume {
 

@@ -1,4 +1,4 @@
-#include "io/spume_cache.h"
+#include "sim/io/spume_cache.h"
 
 #include <zlib.h>
 
@@ -10,11 +10,11 @@
 #include <ostream>
 #include <system_error>
 
-#include "io/crc_file.h"
+#include "sim/io/crc_file.h"
 
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "io/io_bytes.h"
+#include "sim/core/atomic_file.h"
+#include "sim/core/error.h"
+#include "sim/io/io_bytes.h"
 
 namespace spume {
 namespace {

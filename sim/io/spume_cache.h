@@ -28,7 +28,7 @@
 #include <cstdint>
 #include <filesystem>
 
-#include "core/frames.h"
+#include "sim/core/frames.h"
 
 namespace spume {
 

@@ -1,10 +1,10 @@
-#include "stage_record.h"
+#include "sim/io/stage_record.h"
 
 #include <cstdio>
 #include <fstream>
 
-#include "core/atomic_file.h"
-#include "core/error.h"
+#include "sim/core/atomic_file.h"
+#include "sim/core/error.h"
 
 namespace spume {
 namespace {

@@ -15,7 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/file_identity.h"
+#include "sim/io/file_identity.h"
 
 namespace spume {
 

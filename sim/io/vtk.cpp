@@ -1,5 +1,5 @@
 // Legacy VTK reader and writer.
-#include "io/vtk.h"
+#include "sim/io/vtk.h"
 
 #include <algorithm>
 #include <cctype>
@@ -9,9 +9,9 @@
 #include <optional>
 #include <ostream>
 
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "io/io_bytes.h"
+#include "sim/core/atomic_file.h"
+#include "sim/core/error.h"
+#include "sim/io/io_bytes.h"
 
 namespace spume {
 namespace io {

@@ -6,9 +6,9 @@
 #include <optional>
 #include <utility>
 
-#include "core/error.h"
-#include "io/io_bytes.h"
-#include "io/vtk.h"
+#include "sim/core/error.h"
+#include "sim/io/io_bytes.h"
+#include "sim/io/vtk.h"
 
 namespace spume {
 namespace {

@@ -4,7 +4,7 @@
 // another scale emits alike; a key the user sets is taken literally, in SI units.
 #include <array>
 
-#include "keys/key_spec.h"
+#include "sim/keys/key_spec.h"
 
 namespace spume::keys::diffuse {
 

@@ -1,4 +1,4 @@
-#include "key_spec.h"
+#include "sim/keys/key_spec.h"
 
 #include <sstream>
 

@@ -3,7 +3,7 @@
 // settings, the solids, the domain and the outputs. SI units.
 #include <array>
 
-#include "keys/key_spec.h"
+#include "sim/keys/key_spec.h"
 
 namespace spume::keys {
 

@@ -1,4 +1,4 @@
-#include "body_track_file.h"
+#include "sim/pipeline/body_track_file.h"
 
 #include <cerrno>
 #include <cmath>
@@ -7,8 +7,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/atomic_file.h"
-#include "core/error.h"
+#include "sim/core/atomic_file.h"
+#include "sim/core/error.h"
 
 namespace spume {
 namespace {

@@ -6,9 +6,9 @@
 // with 9 significant digits so that every float reads back exactly.
 #include <filesystem>
 
-#include "geometry/body_track.h"
-#include "io/cache_layout.h"
-#include "scene/sim_scene.h"
+#include "sim/geometry/body_track.h"
+#include "sim/io/cache_layout.h"
+#include "sim/scene/sim_scene.h"
 
 namespace spume {
 

@@ -1,6 +1,6 @@
-#include "cache_state.h"
+#include "sim/pipeline/cache_state.h"
 
-#include "core/error.h"
+#include "sim/core/error.h"
 
 namespace spume {
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "io/stage_record.h"
+#include "sim/io/stage_record.h"
 
 namespace spume {
 

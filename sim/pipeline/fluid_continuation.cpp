@@ -1,14 +1,14 @@
-#include "fluid_continuation.h"
+#include "sim/pipeline/fluid_continuation.h"
 
 #include <cstdio>
 #include <fstream>
 
-#include "core/error.h"
-#include "io/cache_layout.h"
-#include "io/frame_pattern.h"
-#include "io/spume_cache.h"
-#include "io/stage_record.h"
-#include "pipeline/fluid_stage.h"
+#include "sim/core/error.h"
+#include "sim/io/cache_layout.h"
+#include "sim/io/frame_pattern.h"
+#include "sim/io/spume_cache.h"
+#include "sim/io/stage_record.h"
+#include "sim/pipeline/fluid_stage.h"
 
 namespace spume {
 namespace {

@@ -10,12 +10,12 @@
 // with its last frame.
 #include <filesystem>
 
-#include "io/cache_layout.h"  // fluid_restart_path
+#include "sim/io/cache_layout.h"  // fluid_restart_path
 #include <optional>
 #include <string>
 
-#include "fluid/restart_state.h"
-#include "scene/sim_scene.h"
+#include "sim/fluid/restart_state.h"
+#include "sim/scene/sim_scene.h"
 
 namespace spume {
 

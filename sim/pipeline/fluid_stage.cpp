@@ -1,20 +1,20 @@
-#include "fluid_stage.h"
+#include "sim/pipeline/fluid_stage.h"
 
 #include <chrono>
 #include <cstdio>
 #include <sstream>
 
-#include "body_track_file.h"
-#include "cache_state.h"
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "core/progress.h"
-#include "fluid/solver.h"
-#include "fluid_continuation.h"
-#include "io/bgeo.h"
-#include "io/frame_pattern.h"
-#include "io/cache_layout.h"
-#include "io/spume_cache.h"
+#include "sim/pipeline/body_track_file.h"
+#include "sim/pipeline/cache_state.h"
+#include "sim/core/atomic_file.h"
+#include "sim/core/error.h"
+#include "sim/core/progress.h"
+#include "sim/fluid/solver.h"
+#include "sim/pipeline/fluid_continuation.h"
+#include "sim/io/bgeo.h"
+#include "sim/io/frame_pattern.h"
+#include "sim/io/cache_layout.h"
+#include "sim/io/spume_cache.h"
 
 namespace spume {
 namespace {

@@ -16,10 +16,10 @@
 #include <optional>
 #include <string>
 
-#include "io/cache_layout.h"
-#include "io/stage_record.h"
+#include "sim/io/cache_layout.h"
+#include "sim/io/stage_record.h"
 
-#include "scene/sim_scene.h"
+#include "sim/scene/sim_scene.h"
 
 namespace spume {
 

@@ -1,13 +1,13 @@
-#include "scene_inputs.h"
+#include "sim/pipeline/scene_inputs.h"
 
 #include <cstdio>
 
-#include "core/error.h"
-#include "io/frame_pattern.h"
-#include "pipeline/fluid_stage.h"
-#include "scene/container.h"
-#include "scene/tank_fit.h"
-#include "io/fluid_source.h"
+#include "sim/core/error.h"
+#include "sim/io/frame_pattern.h"
+#include "sim/pipeline/fluid_stage.h"
+#include "sim/scene/container.h"
+#include "sim/scene/tank_fit.h"
+#include "sim/io/fluid_source.h"
 
 namespace spume {
 namespace {

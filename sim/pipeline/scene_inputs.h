@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "io/fluid_survey.h"
-#include "scene/sim_scene.h"
+#include "sim/io/fluid_survey.h"
+#include "sim/scene/sim_scene.h"
 
 namespace spume {
 

@@ -1,4 +1,4 @@
-#include "simulate_run.h"
+#include "sim/pipeline/simulate_run.h"
 
 #include <chrono>
 #include <cstdio>
@@ -6,17 +6,17 @@
 #include <cstdlib>
 #include <fstream>
 
-#include "body_track_file.h"
-#include "cache_state.h"
-#include "io/file_identity.h"
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "core/progress.h"
-#include "diffuse/simulator.h"
-#include "io/bgeo.h"
-#include "io/cache_layout.h"
-#include "io/spume_cache.h"
-#include "scene/diffuse_params_reader.h"
+#include "sim/pipeline/body_track_file.h"
+#include "sim/pipeline/cache_state.h"
+#include "sim/io/file_identity.h"
+#include "sim/core/atomic_file.h"
+#include "sim/core/error.h"
+#include "sim/core/progress.h"
+#include "sim/diffuse/simulator.h"
+#include "sim/io/bgeo.h"
+#include "sim/io/cache_layout.h"
+#include "sim/io/spume_cache.h"
+#include "sim/scene/diffuse_params_reader.h"
 
 namespace spume {
 namespace {

@@ -9,11 +9,11 @@
 #include <utility>
 #include <vector>
 
-#include "io/cache_layout.h"
-#include "io/stage_record.h"
-#include "pipeline/scene_inputs.h"
-#include "io/fluid_source.h"
-#include "scene/sim_scene.h"
+#include "sim/io/cache_layout.h"
+#include "sim/io/stage_record.h"
+#include "sim/pipeline/scene_inputs.h"
+#include "sim/io/fluid_source.h"
+#include "sim/scene/sim_scene.h"
 
 namespace spume {
 

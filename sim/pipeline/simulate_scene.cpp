@@ -1,4 +1,4 @@
-#include "simulate_scene.h"
+#include "sim/pipeline/simulate_scene.h"
 
 namespace spume {
 

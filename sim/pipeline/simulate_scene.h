@@ -4,8 +4,8 @@
 //   diffuse                      -> OUT/<scene>/diffuse/    simulate_run.h
 #include <memory>
 
-#include "pipeline/fluid_stage.h"
-#include "pipeline/simulate_run.h"
+#include "sim/pipeline/fluid_stage.h"
+#include "sim/pipeline/simulate_run.h"
 
 namespace spume {
 

@@ -1,10 +1,10 @@
-#include "container.h"
+#include "sim/scene/container.h"
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include "core/error.h"
+#include "sim/core/error.h"
 
 namespace spume {
 namespace {

@@ -20,8 +20,8 @@
 #include <optional>
 #include <string>
 
-#include "io/fluid_survey.h"
-#include "geometry/solids.h"
+#include "sim/io/fluid_survey.h"
+#include "sim/geometry/solids.h"
 
 namespace spume {
 

@@ -1,9 +1,9 @@
-#include "diffuse_params_reader.h"
+#include "sim/scene/diffuse_params_reader.h"
 
 #include <cmath>
 
-#include "core/error.h"
-#include "keys/diffuse_keys.h"
+#include "sim/core/error.h"
+#include "sim/keys/diffuse_keys.h"
 
 namespace spume {
 namespace {

@@ -1,7 +1,7 @@
 #pragma once
-#include "core/frames.h"
-#include "core/params.h"
-#include "diffuse/params.h"
+#include "sim/core/frames.h"
+#include "sim/core/params.h"
+#include "sim/diffuse/params.h"
 
 namespace spume {
 

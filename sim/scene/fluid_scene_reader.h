@@ -4,8 +4,8 @@
 // with its unit, default and range in keys/scene_keys.h (`spume keys fluid` lists them).
 #include <vector>
 
-#include "core/params.h"
-#include "fluid/fluid_params.h"
+#include "sim/core/params.h"
+#include "sim/fluid/fluid_params.h"
 
 namespace spume {
 

@@ -1,9 +1,9 @@
-#include "sim_scene.h"
+#include "sim/scene/sim_scene.h"
 
-#include "core/error.h"
-#include "scene/diffuse_params_reader.h"
-#include "keys/scene_keys.h"
-#include "scene/solids_reader.h"
+#include "sim/core/error.h"
+#include "sim/scene/diffuse_params_reader.h"
+#include "sim/keys/scene_keys.h"
+#include "sim/scene/solids_reader.h"
 
 namespace spume {
 namespace {

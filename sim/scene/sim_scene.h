@@ -6,11 +6,11 @@
 #include <string>
 #include <utility>
 
-#include "core/frames.h"
-#include "core/params.h"
-#include "diffuse/params.h"
-#include "scene/fluid_scene_reader.h"
-#include "geometry/solids.h"
+#include "sim/core/frames.h"
+#include "sim/core/params.h"
+#include "sim/diffuse/params.h"
+#include "sim/scene/fluid_scene_reader.h"
+#include "sim/geometry/solids.h"
 
 namespace spume {
 

@@ -1,9 +1,9 @@
-#include "solids_reader.h"
+#include "sim/scene/solids_reader.h"
 
 #include <cmath>
 
-#include "core/error.h"
-#include "keys/scene_keys.h"
+#include "sim/core/error.h"
+#include "sim/keys/scene_keys.h"
 
 namespace spume {
 namespace {

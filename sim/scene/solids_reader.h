@@ -26,8 +26,8 @@
 // gravity, the fluid's pressure and viscosity, and contacts (Bullet; fluid/rigid_bodies.h); it cannot
 // also have a motion, and tanks cannot be dynamic. Only the built-in solver (fluid.source "solver")
 // moves dynamic bodies.
-#include "core/params.h"
-#include "geometry/solids.h"
+#include "sim/core/params.h"
+#include "sim/geometry/solids.h"
 
 namespace spume {
 

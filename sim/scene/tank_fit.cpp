@@ -1,10 +1,10 @@
-#include "tank_fit.h"
+#include "sim/scene/tank_fit.h"
 
 #include <vector>
 
-#include "core/error.h"
-#include "io/frame_pattern.h"
-#include "io/particle_file.h"
+#include "sim/core/error.h"
+#include "sim/io/frame_pattern.h"
+#include "sim/io/particle_file.h"
 
 namespace spume {
 namespace {

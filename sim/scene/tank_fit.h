@@ -11,8 +11,8 @@
 // leaked through a wall) is a warning with the count. Static tanks only (a moving tank is not checked).
 #include <string>
 
-#include "geometry/solids.h"
-#include "io/fluid_survey.h"
+#include "sim/geometry/solids.h"
+#include "sim/io/fluid_survey.h"
 
 namespace spume {
 

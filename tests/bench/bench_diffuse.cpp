@@ -1,4 +1,4 @@
-// Diffuse simulator throughput on a fixed synthetic frame (issue 2): 640k fluid particles in a wavy
+// Diffuse simulator throughput on a fixed synthetic frame: 640k fluid particles in a wavy
 // pool; 1M, 3M or 15M diffuse particles placed like a real frame's: a third inside the fluid, a third
 // within h of its surface, a third in the air above. One frame step (classify, potentials, emission,
 // advection), split by stage, with the working buffers of a running simulation. Run:
@@ -9,9 +9,9 @@
 #include <random>
 #include <sys/resource.h>
 
-#include "core/parallel.h"
-#include "diffuse/simulator.h"
-#include "scene/diffuse_params_reader.h"
+#include "sim/core/parallel.h"
+#include "sim/diffuse/simulator.h"
+#include "sim/scene/diffuse_params_reader.h"
 
 namespace spume {
 namespace {

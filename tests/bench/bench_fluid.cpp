@@ -1,4 +1,4 @@
-// Fluid solver throughput (issue 3): the dam break of SPlisHSPlasH's reference measurement, ~30k
+// Fluid solver throughput: the dam break of SPlisHSPlasH's reference measurement, ~30k
 // particles of radius 0.02 m (a 1 x 2 x 1 m column, 25 x 50 x 25 = 31,250 particles, in a 4 x 3 x 1 m
 // tank), simulated for 1 s at 50 frames per second from rest. Reported per repetition:
 // microseconds per particle-step (wall time / (steps x particles)), average time step, steps per
@@ -10,8 +10,8 @@
 
 #include <chrono>
 
-#include "core/parallel.h"
-#include "fluid/solver.h"
+#include "sim/core/parallel.h"
+#include "sim/fluid/solver.h"
 
 namespace spume {
 namespace {

@@ -1,4 +1,4 @@
-// Surface stage throughput (issue 4). Reconstruction on a dam-break-like block: jittered lattice
+// Surface stage throughput. Reconstruction on a dam-break-like block: jittered lattice
 // particles (r = 0.01 m) whose top follows a wave, plus a few spray stragglers above it; about 220k and
 // 640k particles; median wall time and triangle count, split by stage. Then the OSMesa surface pass
 // drawing the 220k block's surface in a tank at 1920x1080.
@@ -9,9 +9,9 @@
 #include <cmath>
 #include <random>
 
-#include "gl/surface_pass.h"
-#include "surface/mesh_primitives.h"
-#include "surface/reconstruct.h"
+#include "render/gl/surface_pass.h"
+#include "render/surface/mesh_primitives.h"
+#include "render/surface/reconstruct.h"
 
 namespace spume {
 namespace {

@@ -1,4 +1,4 @@
-// Volume pass on the dense synthetic box of issue 4: N spheres uniform in the unit cube,
+// Volume pass on a dense synthetic box: N spheres uniform in the unit cube,
 // r = 0.35 N^(-1/3), 1920x1080, 1 sample per pixel, camera 1.2 m from the cube's centre (about
 // 97% of the rays cross the box). Reports ms per frame with the build (bins / Embree BVH / grids)
 // and the trace separated, Mrays/s and chords per ray. Medians over repetitions:
@@ -11,9 +11,9 @@
 #include <map>
 #include <memory>
 
-#include "core/parallel.h"
-#include "core/rng.h"
-#include "volume/volume_pass.h"
+#include "sim/core/parallel.h"
+#include "sim/core/rng.h"
+#include "render/volume/volume_pass.h"
 
 namespace spume {
 namespace {

@@ -12,7 +12,7 @@
 #include <sstream>
 #include <tuple>
 
-#include "../sim/run_command.h"
+#include "tests/sim/run_command.h"
 
 namespace spume {
 namespace {

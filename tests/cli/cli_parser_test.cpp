@@ -1,10 +1,10 @@
-// The command-line parser and the help tables (render/app/cli_args.h, cli_help.h), without the binary.
+// The command-line parser and the help tables (render/app/cli/cli_args.h, cli_help.h), without the binary.
 #include <gtest/gtest.h>
 
 #include <functional>
 
-#include "cli_args.h"
-#include "cli_help.h"
+#include "render/app/cli/cli_args.h"
+#include "render/app/cli/cli_help.h"
 
 namespace spume::cli {
 namespace {

@@ -8,9 +8,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "../sim/run_command.h"
-#include "compare_test_support.h"
-#include "image/png_io.h"
+#include "tests/sim/run_command.h"
+#include "tests/compare/compare_test_support.h"
+#include "render/image/png_io.h"
 
 namespace spume {
 namespace {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "image/image.h"
+#include "render/image/image.h"
 
 namespace spume::test {
 

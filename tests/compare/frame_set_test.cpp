@@ -2,8 +2,8 @@
 // folder meaning its frames/), patterns matched by number, --frames, and the usage errors.
 #include <gtest/gtest.h>
 
-#include "compare/frame_set.h"
-#include "compare_test_support.h"
+#include "render/app/compare/frame_set.h"
+#include "tests/compare/compare_test_support.h"
 
 namespace spume::compare {
 namespace {

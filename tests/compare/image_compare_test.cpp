@@ -5,11 +5,11 @@
 #include <cmath>
 #include <limits>
 
-#include "compare_test_support.h"
-#include "core/error.h"
-#include "image/difference_maps.h"
-#include "image/image_compare.h"
-#include "image/thumbnail.h"
+#include "tests/compare/compare_test_support.h"
+#include "sim/core/error.h"
+#include "render/image/difference_maps.h"
+#include "render/image/image_compare.h"
+#include "render/image/thumbnail.h"
 
 namespace spume {
 namespace {

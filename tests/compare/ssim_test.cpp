@@ -7,10 +7,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "compare_test_support.h"
-#include "core/error.h"
-#include "core/parallel.h"
-#include "image/ssim.h"
+#include "tests/compare/compare_test_support.h"
+#include "sim/core/error.h"
+#include "sim/core/parallel.h"
+#include "render/image/ssim.h"
 
 namespace spume {
 namespace {

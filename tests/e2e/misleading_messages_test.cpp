@@ -1,4 +1,4 @@
-// Nothing silently absurd, second round (issue 23), through the spume binary: a radius that leaves
+// Nothing silently absurd, second round, through the spume binary: a radius that leaves
 // every particle alone stops the run; frame names say PNG; a gzip of zeros fails on its first bytes
 // with bounded memory; folders that cannot be written are named; keys written at their defaults are
 // no change; a key varied twice, a --markdown prefix and a directory given to info are answered.
@@ -10,10 +10,10 @@
 #include <fstream>
 #include <string>
 
-#include "../sim/run_command.h"
-#include "../sim/test_fluids.h"
-#include "io/bgeo.h"
-#include "io/io_bytes.h"
+#include "tests/sim/run_command.h"
+#include "tests/sim/test_fluids.h"
+#include "sim/io/bgeo.h"
+#include "sim/io/io_bytes.h"
 
 namespace spume {
 namespace {

@@ -1,4 +1,4 @@
-// Never a stale, mixed or silently wrong frame (issue 12), through the spume binary: changed inputs,
+// Never a stale, mixed or silently wrong frame, through the spume binary: changed inputs,
 // keys and caches are noticed; frames know their sources; one writer per output folder; what killed
 // runs leave is cleared; gaps are errors; nonsense is refused.
 #include <gtest/gtest.h>
@@ -9,12 +9,12 @@
 #include <fstream>
 #include <thread>
 
-#include "core/output_lock.h"
-#include "image/png_io.h"
-#include "io/bgeo.h"
-#include "io/stage_record.h"
-#include "../sim/run_command.h"
-#include "../sim/test_fluids.h"
+#include "sim/core/output_lock.h"
+#include "render/image/png_io.h"
+#include "sim/io/bgeo.h"
+#include "sim/io/stage_record.h"
+#include "tests/sim/run_command.h"
+#include "tests/sim/test_fluids.h"
 
 namespace spume {
 namespace {

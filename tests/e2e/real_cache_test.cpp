@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "../sim/run_command.h"
+#include "tests/sim/run_command.h"
 
 namespace spume {
 namespace {

@@ -5,10 +5,10 @@
 
 #include <filesystem>
 
-#include "core/frames.h"
-#include "io/particle_file.h"
-#include "io/spume_cache.h"
-#include "../sim/run_command.h"
+#include "sim/core/frames.h"
+#include "sim/io/particle_file.h"
+#include "sim/io/spume_cache.h"
+#include "tests/sim/run_command.h"
 
 namespace spume {
 namespace {

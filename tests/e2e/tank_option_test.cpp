@@ -1,7 +1,7 @@
-// The container of a one-line --fluid run through the spume binary (issue 23, cases 1, 3, 5 and 11;
-// issue 19, empty frames): inferred only where the fluid was seen stopped, and used by default when closed;
-// none around a block falling freely; a given tank that leaves the fluid outside is an error; the
-// survey kept beside the outputs is not trusted once edited, and is kept with empty frames in it.
+// The container of a one-line --fluid run through the spume binary: inferred only where the fluid
+// was seen stopped, and used by default when closed; none around a block falling freely; a given
+// tank that leaves the fluid outside is an error; the survey kept beside the outputs is not trusted
+// once edited, and is kept with empty frames in it.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -9,8 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "../sim/container_sequences.h"
-#include "../sim/run_command.h"
+#include "tests/sim/container_sequences.h"
+#include "tests/sim/run_command.h"
 
 namespace spume {
 namespace {

@@ -13,7 +13,7 @@
 #include <string>
 #include <unistd.h>
 
-#include "../sim/run_command.h"
+#include "tests/sim/run_command.h"
 
 namespace {
 

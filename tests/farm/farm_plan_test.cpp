@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
-#include "core/frame_spec.h"
-#include "farm/farm_plan.h"
+#include "sim/core/error.h"
+#include "sim/core/frame_spec.h"
+#include "render/app/farm/farm_plan.h"
 
 namespace spume::farm {
 namespace {

@@ -10,8 +10,8 @@
 #include <string>
 #include <unistd.h>
 
-#include "core/error.h"
-#include "farm/slurm_script.h"
+#include "sim/core/error.h"
+#include "render/app/farm/slurm_script.h"
 
 namespace spume::farm {
 namespace {

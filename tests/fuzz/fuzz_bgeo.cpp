@@ -1,8 +1,8 @@
 // libFuzzer target: classic BGEO (io/bgeo.h) as a fluid frame, as a diffuse frame, its header alone,
 // and through the format dispatch of `spume info`.
-#include "fuzz_file.h"
-#include "io/bgeo.h"
-#include "io/particle_file.h"
+#include "tests/fuzz/fuzz_file.h"
+#include "sim/io/bgeo.h"
+#include "sim/io/particle_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace spume;

@@ -7,9 +7,9 @@
 #include <cstring>
 #include <vector>
 
-#include "fuzz_file.h"
-#include "io/particle_file.h"
-#include "io/spume_cache.h"
+#include "tests/fuzz/fuzz_file.h"
+#include "sim/io/particle_file.h"
+#include "sim/io/spume_cache.h"
 
 namespace {
 

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <string>
 
-#include "core/error.h"
+#include "sim/core/error.h"
 
 namespace spume::fuzz {
 

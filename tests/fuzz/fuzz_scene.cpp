@@ -1,12 +1,12 @@
 // libFuzzer target: the simulation half of a scene file (scene/sim_scene.h) from JSON text, as the
-// command loads it (render/app/scene_file.cpp: JSON with comments -> ParamReader -> read_sim_scene ->
+// command loads it (render/app/scene/scene_file.cpp: JSON with comments -> ParamReader -> read_sim_scene ->
 // unknown-key check). Nothing is read from disk: the scene's folder does not exist.
 #include <cstdint>
 #include <string>
 
-#include "core/error.h"
-#include "core/params.h"
-#include "scene/sim_scene.h"
+#include "sim/core/error.h"
+#include "sim/core/params.h"
+#include "sim/scene/sim_scene.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace spume;

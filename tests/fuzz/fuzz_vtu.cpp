@@ -1,7 +1,7 @@
 // libFuzzer target: VTK XML (.vtu: ascii, base64, zlib, appended; io/vtk.h), through read_fluid_file
 // and `spume info`.
-#include "fuzz_file.h"
-#include "io/particle_file.h"
+#include "tests/fuzz/fuzz_file.h"
+#include "sim/io/particle_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace spume;

@@ -1,7 +1,7 @@
 // The camera basis, including the views that used to be degenerate (looking along the up vector).
 #include <gtest/gtest.h>
 
-#include "camera/camera.h"
+#include "render/camera/camera.h"
 
 namespace spume {
 namespace {

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
-#include "image/bitmap_font.h"
-#include "image/contact_sheet.h"
+#include "sim/core/error.h"
+#include "render/image/bitmap_font.h"
+#include "render/image/contact_sheet.h"
 
 namespace spume {
 namespace {

@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <numbers>
 
-#include "gl/surface_pass.h"
-#include "image/png_io.h"
-#include "surface/mesh_primitives.h"
+#include "render/gl/surface_pass.h"
+#include "render/image/png_io.h"
+#include "render/surface/mesh_primitives.h"
 
 namespace spume {
 namespace {

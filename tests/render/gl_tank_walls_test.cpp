@@ -7,11 +7,11 @@
 #include <numbers>
 #include <string>
 
-#include "core/error.h"
-#include "gl/surface_pass.h"
-#include "image/png_io.h"
-#include "pipeline/frame_renderer.h"
-#include "stage/solid_meshes.h"
+#include "sim/core/error.h"
+#include "render/gl/surface_pass.h"
+#include "render/image/png_io.h"
+#include "render/pipeline/frame_renderer.h"
+#include "render/stage/solid_meshes.h"
 
 namespace spume {
 namespace {

@@ -12,7 +12,7 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "compare/compare_report.h"
+#include "render/app/compare/compare_report.h"
 
 namespace spume {
 namespace {

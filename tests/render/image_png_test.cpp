@@ -7,8 +7,8 @@
 #include <fstream>
 #include <random>
 
-#include "core/error.h"
-#include "image/png_io.h"
+#include "sim/core/error.h"
+#include "render/image/png_io.h"
 
 namespace spume {
 namespace {

@@ -1,7 +1,7 @@
 // sRGB transfer curve (IEC 61966-2-1) against values worked out by hand from the standard's formula.
 #include <gtest/gtest.h>
 
-#include "image/image.h"
+#include "render/image/image.h"
 
 namespace spume {
 namespace {

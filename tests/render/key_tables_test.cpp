@@ -6,9 +6,9 @@
 #include <set>
 #include <sstream>
 
-#include "core/error.h"
-#include "core/params.h"
-#include "keys/key_catalog.h"
+#include "sim/core/error.h"
+#include "sim/core/params.h"
+#include "render/keys/key_catalog.h"
 
 namespace spume {
 namespace {

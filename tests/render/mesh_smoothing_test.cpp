@@ -9,10 +9,10 @@
 #include <numbers>
 #include <random>
 
-#include "core/parallel.h"
-#include "surface/mesh_primitives.h"
-#include "surface/mesh_smoothing.h"
-#include "surface/reconstruct.h"
+#include "sim/core/parallel.h"
+#include "render/surface/mesh_primitives.h"
+#include "render/surface/mesh_smoothing.h"
+#include "render/surface/reconstruct.h"
 
 namespace spume {
 namespace {

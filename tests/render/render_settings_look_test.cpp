@@ -2,8 +2,8 @@
 // with their defaults, their values, and errors naming the key out of range.
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-#include "pipeline/render_settings.h"
+#include "sim/core/error.h"
+#include "render/pipeline/render_settings.h"
 
 namespace spume {
 namespace {

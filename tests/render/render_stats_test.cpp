@@ -8,7 +8,7 @@
 #include <string>
 #include <unistd.h>
 
-#include "stage/render_stats.h"
+#include "render/stage/render_stats.h"
 
 namespace spume {
 namespace {

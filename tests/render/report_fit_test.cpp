@@ -4,8 +4,8 @@
 #include <cmath>
 #include <vector>
 
-#include "convergence_fit.h"
-#include "core/error.h"
+#include "render/app/report/convergence_fit.h"
+#include "sim/core/error.h"
 
 namespace spume::report {
 namespace {

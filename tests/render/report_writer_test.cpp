@@ -6,9 +6,9 @@
 #include <fstream>
 #include <unistd.h>
 
-#include "core/error.h"
-#include "gnuplot_figure.h"
-#include "report_table.h"
+#include "sim/core/error.h"
+#include "render/app/report/gnuplot_figure.h"
+#include "render/app/report/report_table.h"
 
 namespace spume::report {
 namespace {

@@ -9,9 +9,9 @@
 #include <random>
 #include <utility>
 
-#include "core/error.h"
-#include "core/parallel.h"
-#include "surface/reconstruct.h"
+#include "sim/core/error.h"
+#include "sim/core/parallel.h"
+#include "render/surface/reconstruct.h"
 
 namespace spume {
 namespace {

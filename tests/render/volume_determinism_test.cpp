@@ -4,9 +4,9 @@
 #include <cstring>
 #include <random>
 
-#include "core/parallel.h"
-#include "surface/triangle_mesh.h"
-#include "volume/volume_pass.h"
+#include "sim/core/parallel.h"
+#include "render/surface/triangle_mesh.h"
+#include "render/volume/volume_pass.h"
 
 namespace spume {
 namespace {

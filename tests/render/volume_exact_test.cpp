@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/error.h"
-#include "volume/composite.h"
-#include "volume/volume_pass.h"
+#include "sim/core/error.h"
+#include "render/volume/composite.h"
+#include "render/volume/volume_pass.h"
 
 namespace spume {
 namespace {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <random>
 
-#include "volume/volume_pass.h"
+#include "render/volume/volume_pass.h"
 
 namespace spume {
 namespace {

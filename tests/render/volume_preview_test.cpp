@@ -5,10 +5,10 @@
 #include <filesystem>
 #include <random>
 
-#include "image/png_io.h"
-#include "surface/triangle_mesh.h"
-#include "volume/composite.h"
-#include "volume/volume_pass.h"
+#include "render/image/png_io.h"
+#include "render/surface/triangle_mesh.h"
+#include "render/volume/composite.h"
+#include "render/volume/volume_pass.h"
 
 namespace spume {
 namespace {

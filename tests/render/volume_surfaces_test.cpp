@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "surface/triangle_mesh.h"
-#include "volume/volume_pass.h"
+#include "render/surface/triangle_mesh.h"
+#include "render/volume/volume_pass.h"
 
 namespace spume {
 namespace {

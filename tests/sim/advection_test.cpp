@@ -5,9 +5,9 @@
 #include <cmath>
 #include <random>
 
-#include "diffuse/advection.h"
-#include "diffuse/fluid_sampling.h"
-#include "test_fluids.h"
+#include "sim/diffuse/advection.h"
+#include "sim/diffuse/fluid_sampling.h"
+#include "tests/sim/test_fluids.h"
 
 namespace spume {
 namespace {

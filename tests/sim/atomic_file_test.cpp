@@ -6,8 +6,8 @@
 #include <fstream>
 #include <unistd.h>
 
-#include "core/atomic_file.h"
-#include "core/error.h"
+#include "sim/core/atomic_file.h"
+#include "sim/core/error.h"
 
 namespace spume {
 namespace {

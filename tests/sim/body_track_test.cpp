@@ -7,10 +7,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/error.h"
-#include "fluid/solver.h"
-#include "pipeline/body_track_file.h"
-#include "pipeline/simulate_scene.h"
+#include "sim/core/error.h"
+#include "sim/fluid/solver.h"
+#include "sim/pipeline/body_track_file.h"
+#include "sim/pipeline/simulate_scene.h"
 
 namespace spume {
 namespace {

@@ -8,10 +8,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "io/bgeo.h"
-#include "io/spume_cache.h"
-#include "run_command.h"
-#include "test_fluids.h"
+#include "sim/io/bgeo.h"
+#include "sim/io/spume_cache.h"
+#include "tests/sim/run_command.h"
+#include "tests/sim/test_fluids.h"
 
 namespace spume {
 namespace {

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "core/frames.h"
-#include "core/vec.h"
-#include "io/bgeo.h"
+#include "sim/core/frames.h"
+#include "sim/core/vec.h"
+#include "sim/io/bgeo.h"
 
 namespace spume::testing {
 

@@ -3,8 +3,8 @@
 // invented where the fluid touches nothing, stays at rest, or is pushed by a moving piston.
 #include <gtest/gtest.h>
 
-#include "container_sequences.h"
-#include "scene/container.h"
+#include "tests/sim/container_sequences.h"
+#include "sim/scene/container.h"
 
 namespace spume {
 namespace {

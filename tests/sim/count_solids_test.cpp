@@ -1,10 +1,10 @@
 // diffuse.count_solids switches the wet-wall count of the classification (MODEL.md §8.11) only: the
 // surface test sees the solids either way (§8.10), so the fluid layer against a wall never forms a
-// crest, as the key's doc says (issue 19, bug 5).
+// crest, as the key's doc says.
 #include <gtest/gtest.h>
 
-#include "diffuse/simulator.h"
-#include "test_fluids.h"
+#include "sim/diffuse/simulator.h"
+#include "tests/sim/test_fluids.h"
 
 namespace spume {
 namespace {

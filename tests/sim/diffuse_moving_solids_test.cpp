@@ -4,9 +4,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "diffuse/simulator.h"
-#include "scene/diffuse_params_reader.h"
-#include "test_fluids.h"
+#include "sim/diffuse/simulator.h"
+#include "sim/scene/diffuse_params_reader.h"
+#include "tests/sim/test_fluids.h"
 
 namespace spume {
 namespace {

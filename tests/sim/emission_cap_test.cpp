@@ -1,12 +1,12 @@
-// Eq. 8's per-particle cap (issue 19, bug 3): a diffuse id numbers at most 4,095 samples per fluid
+// Eq. 8's per-particle cap: a diffuse id numbers at most 4,095 samples per fluid
 // particle and step; what the cap cuts is counted (EmissionResult::capped, FrameStats::capped,
 // stats.csv) instead of vanishing silently.
 #include <gtest/gtest.h>
 
 #include <limits>
 
-#include "diffuse/emission.h"
-#include "test_fluids.h"
+#include "sim/diffuse/emission.h"
+#include "tests/sim/test_fluids.h"
 
 namespace spume {
 namespace {

@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/rng.h"
-#include "diffuse/emission.h"
-#include "test_fluids.h"
+#include "sim/core/rng.h"
+#include "sim/diffuse/emission.h"
+#include "tests/sim/test_fluids.h"
 
 namespace spume {
 namespace {

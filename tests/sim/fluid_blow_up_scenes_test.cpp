@@ -8,8 +8,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "fluid/solver.h"
-#include "scene/sim_scene.h"
+#include "sim/fluid/solver.h"
+#include "sim/scene/sim_scene.h"
 
 namespace spume {
 namespace {

@@ -7,8 +7,8 @@
 #include <numbers>
 #include <numeric>
 
-#include "fluid/boundary.h"
-#include "fluid/solver.h"
+#include "sim/fluid/boundary.h"
+#include "sim/fluid/solver.h"
 
 namespace spume {
 namespace {

@@ -11,8 +11,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "fluid/martin_moyce_1952.h"
-#include "fluid/solver.h"
+#include "sim/fluid/martin_moyce_1952.h"
+#include "sim/fluid/solver.h"
 
 namespace spume {
 namespace {

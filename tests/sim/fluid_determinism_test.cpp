@@ -3,8 +3,8 @@
 
 #include <cstring>
 
-#include "core/parallel.h"
-#include "fluid/solver.h"
+#include "sim/core/parallel.h"
+#include "sim/fluid/solver.h"
 
 namespace spume {
 namespace {

@@ -1,4 +1,4 @@
-// Two-way rigid-fluid coupling (issue 3): a light box dropped on water floats at its Archimedes
+// Two-way rigid-fluid coupling: a light box dropped on water floats at its Archimedes
 // draft, a heavy one sinks to the floor, and no fluid particle is ever inside either.
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <map>
 #include <string>
 
-#include "fluid/solver.h"
+#include "sim/fluid/solver.h"
 
 namespace spume {
 namespace {

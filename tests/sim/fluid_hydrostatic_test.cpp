@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "fluid/solver.h"
+#include "sim/fluid/solver.h"
 
 namespace spume {
 namespace {

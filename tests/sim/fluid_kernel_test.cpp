@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "fluid/kernel.h"
+#include "sim/fluid/kernel.h"
 
 namespace spume::fluid {
 namespace {

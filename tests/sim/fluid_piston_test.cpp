@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "fluid/solver.h"
+#include "sim/fluid/solver.h"
 
 namespace spume {
 namespace {

@@ -9,9 +9,9 @@
 #include <fstream>
 #include <unistd.h>
 
-#include "core/error.h"
-#include "core/parallel.h"
-#include "fluid/solver.h"
+#include "sim/core/error.h"
+#include "sim/core/parallel.h"
+#include "sim/fluid/solver.h"
 
 namespace spume {
 namespace {

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "core/error.h"
-#include "fluid/rigid_bodies.h"
+#include "sim/core/error.h"
+#include "sim/fluid/rigid_bodies.h"
 
 namespace spume::fluid {
 namespace {

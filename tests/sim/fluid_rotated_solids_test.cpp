@@ -5,10 +5,10 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/error.h"
-#include "fluid/solver.h"
-#include "geometry/solid_coverage.h"
-#include "geometry/solids.h"
+#include "sim/core/error.h"
+#include "sim/fluid/solver.h"
+#include "sim/geometry/solid_coverage.h"
+#include "sim/geometry/solids.h"
 
 namespace spume {
 namespace {

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <string>
 
-#include "core/error.h"
-#include "scene/fluid_scene_reader.h"
-#include "scene/solids_reader.h"
+#include "sim/core/error.h"
+#include "sim/scene/fluid_scene_reader.h"
+#include "sim/scene/solids_reader.h"
 
 namespace spume {
 namespace {

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/error.h"
-#include "geometry/solids.h"
+#include "sim/core/error.h"
+#include "sim/geometry/solids.h"
 
 namespace spume {
 namespace {

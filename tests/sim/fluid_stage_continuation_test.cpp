@@ -11,9 +11,9 @@
 #include <sstream>
 #include <unistd.h>
 
-#include "core/parallel.h"
-#include "pipeline/fluid_continuation.h"
-#include "pipeline/fluid_stage.h"
+#include "sim/core/parallel.h"
+#include "sim/pipeline/fluid_continuation.h"
+#include "sim/pipeline/fluid_stage.h"
 
 namespace spume {
 namespace {

@@ -2,7 +2,7 @@
 // particle id, particles that vanish, frames without ids, velocities or masses.
 #include <gtest/gtest.h>
 
-#include "diffuse/fluid_state.h"
+#include "sim/diffuse/fluid_state.h"
 
 namespace spume {
 namespace {

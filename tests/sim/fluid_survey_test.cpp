@@ -9,9 +9,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/fluid_survey.h"
-#include "io/ply.h"
-#include "test_fluids.h"
+#include "sim/io/fluid_survey.h"
+#include "sim/io/ply.h"
+#include "tests/sim/test_fluids.h"
 
 namespace spume {
 namespace {

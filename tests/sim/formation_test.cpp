@@ -3,9 +3,9 @@
 
 #include <cmath>
 
-#include "diffuse/kernels.h"
-#include "diffuse/potentials.h"
-#include "test_fluids.h"
+#include "sim/diffuse/kernels.h"
+#include "sim/diffuse/potentials.h"
+#include "tests/sim/test_fluids.h"
 
 namespace spume {
 namespace {

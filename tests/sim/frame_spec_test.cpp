@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
-#include "core/frame_spec.h"
+#include "sim/core/error.h"
+#include "sim/core/frame_spec.h"
 
 namespace spume {
 namespace {

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <random>
 
-#include "core/parallel.h"
-#include "grid/neighbour_grid.h"
-#include "grid/radix_sort.h"
+#include "sim/core/parallel.h"
+#include "sim/grid/neighbour_grid.h"
+#include "sim/grid/radix_sort.h"
 
 namespace spume {
 namespace {

@@ -9,10 +9,10 @@
 #include <functional>
 #include <numeric>
 
-#include "core/error.h"
-#include "io_test_support.h"
-#include "io/bgeo.h"
-#include "io/io_bytes.h"
+#include "sim/core/error.h"
+#include "tests/sim/io_test_support.h"
+#include "sim/io/bgeo.h"
+#include "sim/io/io_bytes.h"
 
 namespace fs = std::filesystem;
 using namespace spume;

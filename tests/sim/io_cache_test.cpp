@@ -8,9 +8,9 @@
 #include <fstream>
 #include <functional>
 
-#include "core/error.h"
-#include "io_test_support.h"
-#include "io/spume_cache.h"
+#include "sim/core/error.h"
+#include "tests/sim/io_test_support.h"
+#include "sim/io/spume_cache.h"
 
 namespace fs = std::filesystem;
 using namespace spume;

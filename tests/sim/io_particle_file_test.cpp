@@ -5,13 +5,13 @@
 #include <fstream>
 #include <functional>
 
-#include "core/error.h"
-#include "io_test_support.h"
-#include "io/bgeo.h"
-#include "io/particle_file.h"
-#include "io/ply.h"
-#include "io/spume_cache.h"
-#include "io/vtk.h"
+#include "sim/core/error.h"
+#include "tests/sim/io_test_support.h"
+#include "sim/io/bgeo.h"
+#include "sim/io/particle_file.h"
+#include "sim/io/ply.h"
+#include "sim/io/spume_cache.h"
+#include "sim/io/vtk.h"
 
 namespace fs = std::filesystem;
 using namespace spume;

@@ -5,9 +5,9 @@
 #include <functional>
 #include <unistd.h>
 
-#include "core/error.h"
-#include "io_test_support.h"
-#include "io/frame_pattern.h"
+#include "sim/core/error.h"
+#include "tests/sim/io_test_support.h"
+#include "sim/io/frame_pattern.h"
 
 namespace fs = std::filesystem;
 using namespace spume;

@@ -6,9 +6,9 @@
 #include <fstream>
 #include <functional>
 
-#include "core/error.h"
-#include "io_test_support.h"
-#include "io/ply.h"
+#include "sim/core/error.h"
+#include "tests/sim/io_test_support.h"
+#include "sim/io/ply.h"
 
 namespace fs = std::filesystem;
 using namespace spume;

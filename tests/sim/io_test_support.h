@@ -10,7 +10,7 @@
 #include <functional>
 #include <string>
 
-#include "core/error.h"
+#include "sim/core/error.h"
 
 namespace spume::io_test {
 

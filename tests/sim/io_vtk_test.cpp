@@ -7,9 +7,9 @@
 #include <fstream>
 #include <functional>
 
-#include "core/error.h"
-#include "io_test_support.h"
-#include "io/vtk.h"
+#include "sim/core/error.h"
+#include "tests/sim/io_test_support.h"
+#include "sim/io/vtk.h"
 
 namespace fs = std::filesystem;
 using namespace spume;

@@ -5,11 +5,11 @@
 #include <cmath>
 #include <map>
 
-#include "core/rng.h"
-#include "diffuse/emission.h"
-#include "diffuse/kernels.h"
-#include "diffuse/simulator.h"
-#include "test_fluids.h"
+#include "sim/core/rng.h"
+#include "sim/diffuse/emission.h"
+#include "sim/diffuse/kernels.h"
+#include "sim/diffuse/simulator.h"
+#include "tests/sim/test_fluids.h"
 
 namespace spume {
 namespace {

@@ -8,10 +8,10 @@
 
 #include <cmath>
 
-#include "diffuse/emission.h"
-#include "diffuse/potentials.h"
-#include "diffuse/simulator.h"
-#include "test_fluids.h"
+#include "sim/diffuse/emission.h"
+#include "sim/diffuse/potentials.h"
+#include "sim/diffuse/simulator.h"
+#include "tests/sim/test_fluids.h"
 
 namespace spume {
 namespace {

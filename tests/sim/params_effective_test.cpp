@@ -1,9 +1,9 @@
-// ParamReader::effective: the values a run uses, as records compare them (issue 23, case 9): a key
+// ParamReader::effective: the values a run uses, as records compare them: a key
 // written at its default equals the key left out; a changed value differs; what is written but never
 // read as a value stays as written; arrays of objects keep their order.
 #include <gtest/gtest.h>
 
-#include "core/params.h"
+#include "sim/core/params.h"
 
 namespace spume {
 namespace {

@@ -4,8 +4,8 @@
 
 #include <functional>
 
-#include "core/error.h"
-#include "core/params.h"
+#include "sim/core/error.h"
+#include "sim/core/params.h"
 
 namespace spume {
 namespace {

@@ -6,10 +6,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "fluid/solver.h"
-#include "io/spume_cache.h"
-#include "pipeline/cache_state.h"
-#include "pipeline/simulate_scene.h"
+#include "sim/fluid/solver.h"
+#include "sim/io/spume_cache.h"
+#include "sim/pipeline/cache_state.h"
+#include "sim/pipeline/simulate_scene.h"
 
 namespace spume {
 namespace {

@@ -9,8 +9,8 @@
 #include <sstream>
 #include <unistd.h>
 
-#include "core/progress.h"
-#include "pipeline/fluid_stage.h"
+#include "sim/core/progress.h"
+#include "sim/pipeline/fluid_stage.h"
 
 namespace spume {
 namespace {

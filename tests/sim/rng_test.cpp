@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "core/rng.h"
+#include "sim/core/rng.h"
 
 namespace spume {
 namespace {

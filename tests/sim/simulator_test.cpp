@@ -3,10 +3,10 @@
 
 #include <cstring>
 
-#include "core/parallel.h"
-#include "diffuse/simulator.h"
-#include "scene/diffuse_params_reader.h"
-#include "test_fluids.h"
+#include "sim/core/parallel.h"
+#include "sim/diffuse/simulator.h"
+#include "sim/scene/diffuse_params_reader.h"
+#include "tests/sim/test_fluids.h"
 
 namespace spume {
 namespace {

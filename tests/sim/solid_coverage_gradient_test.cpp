@@ -17,8 +17,8 @@
 
 #include <numbers>
 
-#include "diffuse/kernels.h"
-#include "geometry/solid_coverage.h"
+#include "sim/diffuse/kernels.h"
+#include "sim/geometry/solid_coverage.h"
 
 namespace spume {
 namespace {

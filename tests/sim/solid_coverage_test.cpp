@@ -6,8 +6,8 @@
 #include <numbers>
 #include <random>
 
-#include "diffuse/kernels.h"
-#include "geometry/solid_coverage.h"
+#include "sim/diffuse/kernels.h"
+#include "sim/geometry/solid_coverage.h"
 
 namespace spume {
 namespace {

@@ -3,8 +3,8 @@
 
 #include <filesystem>
 
-#include "core/error.h"
-#include "io/stage_record.h"
+#include "sim/core/error.h"
+#include "sim/io/stage_record.h"
 
 namespace spume {
 namespace {

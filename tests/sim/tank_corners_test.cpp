@@ -1,4 +1,4 @@
-// Steps across a tank's edges and into its corners stop at every wall they meet (issue 19, bug 1),
+// Steps across a tank's edges and into its corners stop at every wall they meet,
 // steps over an open rim still go over, and push-out leaves a solid by a skin float can represent
 // however far from the origin the scene sits (bug 4). Expectations are worked by hand: a step that
 // ends beyond a set of walls and stops at each of them keeps its motion along them, so it ends with
@@ -9,8 +9,8 @@
 #include <cmath>
 #include <random>
 
-#include "diffuse/simulator.h"
-#include "test_fluids.h"
+#include "sim/diffuse/simulator.h"
+#include "tests/sim/test_fluids.h"
 
 namespace spume {
 namespace {
@@ -45,7 +45,7 @@ void expect_clipped(const Vec3f& to, const Vec3f& v_before, const Vec3f& p, cons
   }
 }
 
-TEST(TankWallStops, TheIssuesStepThroughFloorAndSideWallStopsAtBoth) {
+TEST(TankWallStops, AStepThroughTheFloorAndASideWallStopsAtBoth) {
   // (0.9, 0.05) -> (1.3, -0.3): the floor is met first (at x = 0.957), the x = 1 wall's plane is
   // crossed below the floor. Before: the floor stopped it, x stayed 1.3, and push_out sent it out
   // through the wall's outer face.

@@ -4,9 +4,9 @@
 
 #include <filesystem>
 
-#include "container_sequences.h"
-#include "core/error.h"
-#include "scene/tank_fit.h"
+#include "tests/sim/container_sequences.h"
+#include "sim/core/error.h"
+#include "sim/scene/tank_fit.h"
 
 namespace spume {
 namespace {

@@ -3,8 +3,8 @@
 #include <random>
 #include <vector>
 
-#include "core/frames.h"
-#include "diffuse/fluid_state.h"
+#include "sim/core/frames.h"
+#include "sim/diffuse/fluid_state.h"
 
 namespace spume::testing {
 

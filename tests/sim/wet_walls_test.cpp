@@ -4,10 +4,10 @@
 
 #include <numbers>
 
-#include "diffuse/potentials.h"
-#include "diffuse/simulator.h"
-#include "geometry/solid_coverage.h"
-#include "test_fluids.h"
+#include "sim/diffuse/potentials.h"
+#include "sim/diffuse/simulator.h"
+#include "sim/geometry/solid_coverage.h"
+#include "tests/sim/test_fluids.h"
 
 namespace spume {
 namespace {

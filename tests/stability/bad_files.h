@@ -11,7 +11,7 @@
 #include <fstream>
 #include <string>
 
-#include "core/error.h"
+#include "sim/core/error.h"
 
 namespace spume::stability {
 

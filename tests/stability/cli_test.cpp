@@ -9,10 +9,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "bad_files.h"
-#include "io/bgeo.h"
-#include "../sim/run_command.h"
-#include "../sim/test_fluids.h"
+#include "tests/stability/bad_files.h"
+#include "sim/io/bgeo.h"
+#include "tests/sim/run_command.h"
+#include "tests/sim/test_fluids.h"
 
 namespace spume {
 namespace {

@@ -5,13 +5,13 @@
 #include <filesystem>
 #include <random>
 
-#include "io/bgeo.h"
-#include "io/particle_file.h"
-#include "io/ply.h"
-#include "io/spume_cache.h"
-#include "io/vtk.h"
-#include "bad_files.h"
-#include "stability_support.h"
+#include "sim/io/bgeo.h"
+#include "sim/io/particle_file.h"
+#include "sim/io/ply.h"
+#include "sim/io/spume_cache.h"
+#include "sim/io/vtk.h"
+#include "tests/stability/bad_files.h"
+#include "tests/stability/stability_support.h"
 
 namespace spume {
 namespace {

@@ -3,7 +3,7 @@
 // centre), and in the corners of a tank (they stay inside, on every wall at once).
 #include <gtest/gtest.h>
 
-#include "stability_support.h"
+#include "tests/stability/stability_support.h"
 
 namespace spume {
 namespace {

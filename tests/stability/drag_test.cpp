@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "stability_support.h"
+#include "tests/stability/stability_support.h"
 
 namespace spume {
 namespace {

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <unordered_map>
 
-#include "stability_support.h"
+#include "tests/stability/stability_support.h"
 
 namespace spume {
 namespace {

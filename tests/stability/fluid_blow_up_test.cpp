@@ -1,6 +1,6 @@
 // A solver that blows up stops with an error naming the frame, the value and the bound, and leaves
 // no record (so the stage is never taken for finished). The bounds (fluid/blow_up.h) are checked
-// against hand-worked scene boxes, and the case of the issue, min_dt = max_dt = 1 s on the dam break
+// against hand-worked scene boxes, and a user's case, min_dt = max_dt = 1 s on the dam break
 // (one step a frame), is run through the spume binary.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -9,10 +9,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/error.h"
-#include "fluid/blow_up.h"
-#include "stability_support.h"
-#include "../sim/run_command.h"
+#include "sim/core/error.h"
+#include "sim/fluid/blow_up.h"
+#include "tests/stability/stability_support.h"
+#include "tests/sim/run_command.h"
 
 namespace spume {
 namespace {
@@ -121,7 +121,7 @@ TEST(StabilityBlowUp, CheckNamesTheParticleTheValueAndTheBound) {
   EXPECT_FALSE(error_of([&] { fluid::check_blow_up(l, p, three_particles(Vec3f::Zero()), NAN, 0.5); }).empty());
 }
 
-// The issue's case: the dam break (scenes/dambreak.json's fluid and tank) with min_dt = max_dt = 1 s,
+// A user's case: the dam break (scenes/dambreak.json's fluid and tank) with min_dt = max_dt = 1 s,
 // so every 1/30 s frame is one step. Measured: speeds 0.5, 0.8, 2.0, 7.9, 4.3, 21 m/s in frames 1-6,
 // then 104 m/s at frame 7 (beyond 5 x sqrt(2 g 1 m) = 22.1 m/s), NaN at frame 10 without the check.
 TEST(StabilityBlowUp, OneStepFramesStopTheDamBreakAtFrameSevenWithoutARecord) {

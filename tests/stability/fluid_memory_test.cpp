@@ -9,12 +9,12 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/error.h"
-#include "fluid/boundary.h"
-#include "fluid/memory_estimate.h"
-#include "fluid/solver.h"
-#include "stability_support.h"
-#include "../sim/run_command.h"
+#include "sim/core/error.h"
+#include "sim/fluid/boundary.h"
+#include "sim/fluid/memory_estimate.h"
+#include "sim/fluid/solver.h"
+#include "tests/stability/stability_support.h"
+#include "tests/sim/run_command.h"
 
 namespace spume {
 namespace {
@@ -117,8 +117,8 @@ TEST(StabilityFluidMemory, AnAbsurdBlockIsRefusedWithinASecond) {
   EXPECT_NE(message.find("is available"), std::string::npos) << message;
 }
 
-// The issue's case, 1.25e8 particles (a 10 m cube at r = 1 cm, estimated 288 GB), through the binary.
-TEST(StabilityFluidMemory, TheIssuesBlockIsRefusedWithinASecondWhereItCannotFit) {
+// A user's case, 1.25e8 particles (a 10 m cube at r = 1 cm, estimated 288 GB), through the binary.
+TEST(StabilityFluidMemory, ATenMetreCubeAtOneCentimetreIsRefusedWithinASecondWhereItCannotFit) {
   FluidSolverParams p;
   p.particle_radius = 0.01f;
   const std::vector<FluidBlock> blocks = {{Vec3f(0, 0, 0), Vec3f(10, 10, 10)}};

@@ -8,8 +8,8 @@
 
 #include <cmath>
 
-#include "core/error.h"
-#include "fluid/solver.h"
+#include "sim/core/error.h"
+#include "sim/fluid/solver.h"
 
 namespace spume {
 namespace {

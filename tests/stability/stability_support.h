@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
-#include "diffuse/simulator.h"
-#include "scene/diffuse_params_reader.h"
-#include "../sim/test_fluids.h"
+#include "sim/core/error.h"
+#include "sim/diffuse/simulator.h"
+#include "sim/scene/diffuse_params_reader.h"
+#include "tests/sim/test_fluids.h"
 
 namespace spume::stability {
 

@@ -3,7 +3,7 @@
 // ask for (memory bounded).
 #include <gtest/gtest.h>
 
-#include "stability_support.h"
+#include "tests/stability/stability_support.h"
 
 namespace spume {
 namespace {

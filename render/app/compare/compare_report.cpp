@@ -1,10 +1,10 @@
-#include "compare_report.h"
+#include "render/app/compare/compare_report.h"
 
 #include <set>
 #include <system_error>
 
-#include "html_report.h"
-#include "summary_files.h"
+#include "render/app/compare/html_report.h"
+#include "render/app/compare/summary_files.h"
 
 namespace spume::compare {
 namespace fs = std::filesystem;

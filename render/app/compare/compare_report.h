@@ -4,7 +4,7 @@
 #include <functional>
 #include <vector>
 
-#include "frame_compare.h"
+#include "render/app/compare/frame_compare.h"
 
 namespace spume::compare {
 

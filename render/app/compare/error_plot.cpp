@@ -1,11 +1,11 @@
-#include "error_plot.h"
+#include "render/app/compare/error_plot.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
-#include "html_text.h"
-#include "summary_files.h"
+#include "render/app/compare/html_text.h"
+#include "render/app/compare/summary_files.h"
 
 namespace spume::compare {
 namespace {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "frame_compare.h"
+#include "render/app/compare/frame_compare.h"
 
 namespace spume::compare {
 

@@ -1,4 +1,4 @@
-#include "frame_compare.h"
+#include "render/app/compare/frame_compare.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,10 +7,10 @@
 #include <mutex>
 #include <tuple>
 
-#include "core/parallel.h"
-#include "image/difference_maps.h"
-#include "image/png_io.h"
-#include "image/thumbnail.h"
+#include "sim/core/parallel.h"
+#include "render/image/difference_maps.h"
+#include "render/image/png_io.h"
+#include "render/image/thumbnail.h"
 
 namespace spume::compare {
 namespace fs = std::filesystem;

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "frame_set.h"
-#include "image/image_compare.h"
-#include "image/ssim.h"
+#include "render/app/compare/frame_set.h"
+#include "render/image/image_compare.h"
+#include "render/image/ssim.h"
 
 namespace spume::compare {
 

@@ -1,4 +1,4 @@
-#include "frame_set.h"
+#include "render/app/compare/frame_set.h"
 
 #include <algorithm>
 #include <cctype>
@@ -7,8 +7,8 @@
 #include <set>
 #include <system_error>
 
-#include "core/frame_spec.h"
-#include "io/frame_pattern.h"
+#include "sim/core/frame_spec.h"
+#include "sim/io/frame_pattern.h"
 
 namespace spume::compare {
 namespace fs = std::filesystem;

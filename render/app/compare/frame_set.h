@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "cli_args.h"
+#include "render/app/cli/cli_args.h"
 
 namespace spume::compare {
 

@@ -1,4 +1,4 @@
-#include "html_assets.h"
+#include "render/app/compare/html_assets.h"
 
 namespace spume::compare {
 

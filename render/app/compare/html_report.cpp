@@ -1,15 +1,15 @@
-#include "html_report.h"
+#include "render/app/compare/html_report.h"
 
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
-#include "core/atomic_file.h"
-#include "error_plot.h"
-#include "html_assets.h"
-#include "html_text.h"
-#include "image/difference_maps.h"
-#include "image/thumbnail.h"
+#include "sim/core/atomic_file.h"
+#include "render/app/compare/error_plot.h"
+#include "render/app/compare/html_assets.h"
+#include "render/app/compare/html_text.h"
+#include "render/image/difference_maps.h"
+#include "render/image/thumbnail.h"
 
 namespace spume::compare {
 namespace fs = std::filesystem;

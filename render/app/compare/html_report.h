@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <string>
 
-#include "summary_files.h"
+#include "render/app/compare/summary_files.h"
 
 namespace spume::compare {
 

@@ -1,4 +1,4 @@
-#include "html_text.h"
+#include "render/app/compare/html_text.h"
 
 #include <cctype>
 #include <cstdio>

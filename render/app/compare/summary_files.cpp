@@ -1,10 +1,10 @@
-#include "summary_files.h"
+#include "render/app/compare/summary_files.h"
 
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
-#include "core/atomic_file.h"
+#include "sim/core/atomic_file.h"
 
 namespace spume::compare {
 

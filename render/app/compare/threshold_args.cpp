@@ -1,10 +1,10 @@
-#include "threshold_args.h"
+#include "render/app/compare/threshold_args.h"
 
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
 
-#include "frame_set.h"
+#include "render/app/compare/frame_set.h"
 
 namespace spume::compare {
 namespace {

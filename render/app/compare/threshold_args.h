@@ -5,7 +5,7 @@
 // decimals, optionally with a trailing '%', held exactly.
 #include <string>
 
-#include "image/image_compare.h"
+#include "render/image/image_compare.h"
 
 namespace spume::compare {
 

@@ -1,9 +1,9 @@
-#include "farm/farm_plan.h"
+#include "render/app/farm/farm_plan.h"
 
 #include <algorithm>
 
-#include "core/error.h"
-#include "core/frame_spec.h"
+#include "sim/core/error.h"
+#include "sim/core/frame_spec.h"
 
 namespace spume::farm {
 

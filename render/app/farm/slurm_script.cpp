@@ -1,8 +1,8 @@
-#include "farm/slurm_script.h"
+#include "render/app/farm/slurm_script.h"
 
 #include <algorithm>
 
-#include "core/error.h"
+#include "sim/core/error.h"
 
 namespace spume::farm {
 namespace {

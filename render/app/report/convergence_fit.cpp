@@ -1,10 +1,10 @@
-#include "convergence_fit.h"
+#include "render/app/report/convergence_fit.h"
 
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
-#include "core/error.h"
+#include "sim/core/error.h"
 
 namespace spume::report {
 

@@ -7,9 +7,9 @@
 #include <chrono>
 #include <cmath>
 
-#include "core/error.h"
-#include "diffuse/advection.h"
-#include "diffuse_runs.h"
+#include "sim/core/error.h"
+#include "sim/diffuse/advection.h"
+#include "render/app/report/diffuse_runs.h"
 
 namespace spume::report {
 namespace {

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "diffuse/params.h"
-#include "study.h"
+#include "sim/diffuse/params.h"
+#include "render/app/report/study.h"
 
 namespace spume {
 struct SceneSetup;

@@ -6,14 +6,14 @@
 #include <chrono>
 #include <cmath>
 
-#include "pipeline/scene_inputs.h"
-#include "../scene_args.h"
-#include "core/error.h"
-#include "diffuse/simulator.h"
-#include "diffuse_runs.h"
-#include "io/spume_cache.h"
-#include "pipeline/simulate_run.h"
-#include "pipeline/simulate_scene.h"
+#include "sim/pipeline/scene_inputs.h"
+#include "render/app/scene/scene_args.h"
+#include "sim/core/error.h"
+#include "sim/diffuse/simulator.h"
+#include "render/app/report/diffuse_runs.h"
+#include "sim/io/spume_cache.h"
+#include "sim/pipeline/simulate_run.h"
+#include "sim/pipeline/simulate_scene.h"
 
 namespace spume::report {
 namespace {

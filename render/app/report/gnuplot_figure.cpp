@@ -1,4 +1,4 @@
-#include "gnuplot_figure.h"
+#include "render/app/report/gnuplot_figure.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,9 +7,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "subprocess.h"
+#include "sim/core/atomic_file.h"
+#include "sim/core/error.h"
+#include "render/app/report/subprocess.h"
 
 namespace spume::report {
 namespace {

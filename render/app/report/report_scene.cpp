@@ -1,10 +1,10 @@
-#include "report_scene.h"
+#include "render/app/report/report_scene.h"
 
 #include <fstream>
 #include <sstream>
 
-#include "core/error.h"
-#include "pipeline/simulate_scene.h"
+#include "sim/core/error.h"
+#include "sim/pipeline/simulate_scene.h"
 
 namespace spume::report {
 

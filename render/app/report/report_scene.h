@@ -1,8 +1,8 @@
 #pragma once
 // The scene the render and diffuse studies run on: loaded as `spume run` loads it, with its fluid and
 // diffuse caches simulated by the ordinary stages when missing or stale, and its busiest frame.
-#include "../scene_args.h"
-#include "study.h"
+#include "render/app/scene/scene_args.h"
+#include "render/app/report/study.h"
 
 namespace spume::report {
 

@@ -1,9 +1,9 @@
-#include "report_table.h"
+#include "render/app/report/report_table.h"
 
 #include <cmath>
 #include <cstdio>
 
-#include "core/error.h"
+#include "sim/core/error.h"
 
 namespace spume::report {
 

@@ -1,6 +1,6 @@
-#include "report_writer.h"
+#include "render/app/report/report_writer.h"
 
-#include "core/atomic_file.h"
+#include "sim/core/atomic_file.h"
 
 namespace spume::report {
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "study.h"
+#include "render/app/report/study.h"
 
 namespace spume::report {
 

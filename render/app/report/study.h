@@ -6,8 +6,8 @@
 #include <functional>
 #include <string>
 
-#include "gnuplot_figure.h"
-#include "report_table.h"
+#include "render/app/report/gnuplot_figure.h"
+#include "render/app/report/report_table.h"
 
 namespace spume::report {
 

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <map>
 
-#include "convergence_fit.h"
-#include "core/error.h"
-#include "diffuse_runs.h"
-#include "report_scene.h"
+#include "render/app/report/convergence_fit.h"
+#include "sim/core/error.h"
+#include "render/app/report/diffuse_runs.h"
+#include "render/app/report/report_scene.h"
 
 namespace spume::report {
 namespace {

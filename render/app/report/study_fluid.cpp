@@ -6,10 +6,10 @@
 #include <chrono>
 #include <cmath>
 
-#include "core/error.h"
-#include "fluid/martin_moyce_1952.h"
-#include "fluid/solver.h"
-#include "study.h"
+#include "sim/core/error.h"
+#include "sim/fluid/martin_moyce_1952.h"
+#include "sim/fluid/solver.h"
+#include "render/app/report/study.h"
 
 namespace spume::report {
 namespace {

@@ -6,16 +6,16 @@
 #include <chrono>
 #include <cmath>
 
-#include "../scene_render.h"
-#include "stage/render_stage.h"
-#include "convergence_fit.h"
-#include "core/error.h"
-#include "image/image.h"
-#include "pipeline/frame_renderer.h"
-#include "report_scene.h"
-#include "surface/reconstruct.h"
-#include "volume/composite.h"
-#include "volume/volume_pass.h"
+#include "render/app/scene/scene_render.h"
+#include "render/stage/render_stage.h"
+#include "render/app/report/convergence_fit.h"
+#include "sim/core/error.h"
+#include "render/image/image.h"
+#include "render/pipeline/frame_renderer.h"
+#include "render/app/report/report_scene.h"
+#include "render/surface/reconstruct.h"
+#include "render/volume/composite.h"
+#include "render/volume/volume_pass.h"
 
 namespace spume::report {
 namespace {

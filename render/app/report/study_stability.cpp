@@ -6,10 +6,10 @@
 #include <fstream>
 #include <unistd.h>
 
-#include "core/error.h"
-#include "core/params.h"
-#include "study.h"
-#include "subprocess.h"
+#include "sim/core/error.h"
+#include "sim/core/params.h"
+#include "render/app/report/study.h"
+#include "render/app/report/subprocess.h"
 
 namespace spume::report {
 namespace {

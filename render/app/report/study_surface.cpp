@@ -7,9 +7,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/error.h"
-#include "surface/reconstruct.h"
-#include "study.h"
+#include "sim/core/error.h"
+#include "render/surface/reconstruct.h"
+#include "render/app/report/study.h"
 
 namespace spume::report {
 namespace {

@@ -1,4 +1,4 @@
-#include "subprocess.h"
+#include "render/app/report/subprocess.h"
 
 #include <fcntl.h>
 #include <spawn.h>

@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "gl/surface_pass.h"
-#include "surface/mesh_primitives.h"
+#include "render/gl/surface_pass.h"
+#include "render/surface/mesh_primitives.h"
 
 namespace {
 

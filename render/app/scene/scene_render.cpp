@@ -1,13 +1,13 @@
-#include "scene_render.h"
+#include "render/app/scene/scene_render.h"
 
 #include <cstdio>
 
-#include "core/error.h"
-#include "io/cache_layout.h"
-#include "pipeline/body_track_file.h"
-#include "pipeline/fluid_stage.h"
-#include "pipeline/simulate_run.h"
-#include "pipeline/simulate_scene.h"
+#include "sim/core/error.h"
+#include "sim/io/cache_layout.h"
+#include "sim/pipeline/body_track_file.h"
+#include "sim/pipeline/fluid_stage.h"
+#include "sim/pipeline/simulate_run.h"
+#include "sim/pipeline/simulate_scene.h"
 
 namespace spume {
 

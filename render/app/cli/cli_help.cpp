@@ -1,4 +1,4 @@
-#include "cli_help.h"
+#include "render/app/cli/cli_help.h"
 
 #include <algorithm>
 #include <sstream>

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "cli_args.h"
-#include "pipeline/render_settings.h"
-#include "scene/sim_scene.h"
+#include "render/app/cli/cli_args.h"
+#include "render/pipeline/render_settings.h"
+#include "sim/scene/sim_scene.h"
 
 namespace spume {
 

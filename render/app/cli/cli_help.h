@@ -5,7 +5,7 @@
 #include <utility>
 #include <vector>
 
-#include "cli_args.h"
+#include "render/app/cli/cli_args.h"
 
 namespace spume::cli {
 

@@ -5,10 +5,10 @@
 #include <filesystem>
 #include <vector>
 
-#include "pipeline/render_settings.h"
-#include "pipeline/scene_inputs.h"
-#include "scene/sim_scene.h"
-#include "stage/render_scene.h"
+#include "render/pipeline/render_settings.h"
+#include "sim/pipeline/scene_inputs.h"
+#include "sim/scene/sim_scene.h"
+#include "render/stage/render_scene.h"
 
 namespace spume {
 

@@ -1,10 +1,10 @@
-#include "scene_lock.h"
+#include "render/app/scene/scene_lock.h"
 
 #include <cstdio>
 
-#include "core/atomic_file.h"
-#include "io/stage_record.h"
-#include "pipeline/simulate_scene.h"
+#include "sim/core/atomic_file.h"
+#include "sim/io/stage_record.h"
+#include "sim/pipeline/simulate_scene.h"
 
 namespace spume {
 

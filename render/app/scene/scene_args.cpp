@@ -1,12 +1,12 @@
-#include "scene_args.h"
+#include "render/app/scene/scene_args.h"
 
 #include <algorithm>
 #include <cctype>
 
-#include "core/error.h"
-#include "core/parallel.h"
-#include "keys/scene_keys.h"
-#include "scene_file.h"
+#include "sim/core/error.h"
+#include "sim/core/parallel.h"
+#include "sim/keys/scene_keys.h"
+#include "render/app/scene/scene_file.h"
 
 namespace spume {
 namespace {

@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/error.h"
+#include "sim/core/error.h"
 
 namespace spume::cli {
 

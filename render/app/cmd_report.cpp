@@ -4,12 +4,12 @@
 #include <chrono>
 #include <cstdio>
 
-#include "../cli_args.h"
-#include "../commands.h"
-#include "core/error.h"
-#include "core/parallel.h"
-#include "report_writer.h"
-#include "study.h"
+#include "render/app/cli/cli_args.h"
+#include "render/app/commands.h"
+#include "sim/core/error.h"
+#include "sim/core/parallel.h"
+#include "render/app/report/report_writer.h"
+#include "render/app/report/study.h"
 
 namespace spume {
 namespace {

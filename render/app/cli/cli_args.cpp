@@ -1,11 +1,11 @@
-#include "cli_args.h"
+#include "render/app/cli/cli_args.h"
 
 #include <charconv>
 #include <cmath>
 #include <limits>
 
-#include "core/frame_spec.h"
-#include "core/params.h"
+#include "sim/core/frame_spec.h"
+#include "sim/core/params.h"
 
 namespace spume::cli {
 namespace {

@@ -3,8 +3,8 @@
 // left there (core/atomic_file.h).
 #include <memory>
 
-#include "core/output_lock.h"
-#include "scene_args.h"
+#include "sim/core/output_lock.h"
+#include "render/app/scene/scene_args.h"
 
 namespace spume {
 

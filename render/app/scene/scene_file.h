@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "core/params.h"
+#include "sim/core/params.h"
 
 namespace spume {
 

@@ -1,11 +1,11 @@
-#include "scene_file.h"
+#include "render/app/scene/scene_file.h"
 
 #include <algorithm>
 #include <fstream>
 #include <sstream>
 
-#include "cli_args.h"
-#include "core/error.h"
+#include "render/app/cli/cli_args.h"
+#include "sim/core/error.h"
 
 namespace spume {
 namespace {
