@@ -2,6 +2,7 @@
 // The fluid as one diffuse step sees it: particles at time t, interpolated between two frames that
 // are matched by particle id (counts may change between frames).
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "sim/core/frames.h"
@@ -14,8 +15,16 @@ struct FramePair {
   const FluidFrame* next = nullptr;  // null at the last frame
   std::vector<int32_t> next_index;
   double frame_dt = 0.0;             // s between the two frames
+  // Why the particles of frames without ids were left unpaired ("" when they were paired): their
+  // counts differ, or index i of the next frame is not where particle i went (MODEL.md §8.16).
+  std::string unpaired_because;
 };
 
+// Frames with ids are joined on id. Without ids a particle is paired by index only when the counts
+// agree and the index order is kept: the median distance from where particle i's stored velocity (or,
+// without one, its position) puts it to index i of the next frame must be under a quarter of the
+// median distance between unrelated particles (i against i + n/2). Otherwise nothing is paired, and
+// interpolate_fluid moves every particle with its stored velocity.
 FramePair pair_frames(const FluidFrame& current, const FluidFrame* next, double frame_dt);
 
 // Plain arrays for one step [t, t + dt].

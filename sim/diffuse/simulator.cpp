@@ -206,6 +206,7 @@ FrameStats DiffuseSimulator::process_frame(const FluidFrame& a, const FluidFrame
   pending_.frame = a.index;
   pending_.fluid = a.size();
   pending_.by_type = particles_.count_by_type();
+  pending_.unpaired_because = pair.unpaired_because;
   ready(particles_, pending_);
   const FrameStats done = pending_;
   pending_ = FrameStats{};

@@ -4,6 +4,7 @@
 // sample the fluid velocity at it (§3, §4) -> formation potentials and emission (§1, §2) -> advection
 // per type, solids, domain, dissolution (§4, §5, §8) -> compaction in cell order.
 #include <array>
+#include <string>
 #include <functional>
 
 #include "sim/core/frames.h"
@@ -32,6 +33,7 @@ struct FrameStats {
   uint64_t dropped = 0;     // candidates the emission budget refused since the previous frame
   uint64_t capped = 0;      // asked for by Eq. 8 beyond 4,095 per fluid particle and step, never sampled
   std::array<double, size_t(Stage::Count)> stage_ms{};
+  std::string unpaired_because;  // why this frame's particles were not paired with the next's ("" if paired)
 };
 
 struct DiffuseSetup {

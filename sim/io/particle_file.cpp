@@ -68,7 +68,7 @@ void describe_fluid(std::ostringstream& out, const FluidFrame& f) {
     const auto [lo, hi] = std::minmax_element(f.ids.begin(), f.ids.end());
     out << "  ids: " << *lo << " .. " << *hi << "\n";
   } else {
-    out << "  ids: none (particle order is the identity)\n";
+    out << "  ids: none (frames are paired by index only where the count and the order are kept)\n";
   }
   if (!f.masses.empty()) {
     const auto [lo, hi] = std::minmax_element(f.masses.begin(), f.masses.end());

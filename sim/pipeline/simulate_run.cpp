@@ -193,6 +193,7 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
 
   bool warned_budget = false, warned_cap = false;
   int domain_warnings = 0;  // frames that lost more than 1% of what they emitted to the domain
+  int unpaired_frames = 0;  // frames without ids whose particles could not be paired with the next's
   for (size_t k = resume; k < frames.size(); ++k) {
     std::optional<FluidFrame> next;
     if (k + 1 < frames.size())
@@ -222,6 +223,13 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
     const FrameStats stats = with_context(str("frame ", frames[k]), [&] {
       return simulator.process_frame(current, next ? &*next : nullptr, write_frame);
     });
+    if (!stats.unpaired_because.empty() && ++unpaired_frames == 1)
+      progress.message(str("warning: the fluid frames carry no particle ids, and from frame ", stats.frame, " to ",
+                           frames[k + 1], " ", stats.unpaired_because, ": particles are not paired by index there; ",
+                           current.has_velocities() ? "each moves with its stored velocity between frames"
+                                                    : "without stored velocities they stand still between frames, "
+                                                      "so foam and bubbles are not carried by the flow",
+                           " (MODEL.md §8.16; a cache with an id attribute avoids it)"));
     if (stats.generated > 0 && stats.removed * 100 > stats.generated) {
       if (++domain_warnings <= 3)
         progress.message(str("warning: frame ", stats.frame, " removed ", stats.removed, " diffuse particles outside the "
@@ -242,6 +250,9 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
                     str(stats.by_type[0], " spray ", stats.by_type[1], " foam ", stats.by_type[2], " bubbles"));
     if (next) current = std::move(*next);
   }
+  if (unpaired_frames > 1)
+    progress.message(str("  (", unpaired_frames, " of ", frames.size() - 1 - resume,
+                         " frame intervals left their particles unpaired)"));
   write_file_atomically(summary.out_dir / "stats.csv", [&](std::ostream& out) { out << stats_text; });
   write_stage_record(cache_dir, wanted);
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

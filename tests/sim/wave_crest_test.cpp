@@ -109,7 +109,9 @@ TEST(WaveCrestScale, SummedOverOneSupportRadiusTheEdgesNeverReachThePapersThresh
   const Cube cube = lattice_cube(12, 0.0f);
   const CrestRun run = crest_run(cube.points, along_normal, narrow);
   for (size_t i = 0; i < cube.points.size(); ++i)
-    if (cube.where[i] >= 2) EXPECT_LT(run.kappa[i], 1.0f) << i;
+    if (cube.where[i] >= 2) {
+      EXPECT_LT(run.kappa[i], 1.0f) << i;
+    }
 }
 
 TEST(WaveCrestMotion, ACubeAtRestFormsNoCrest) {
@@ -154,7 +156,9 @@ TEST(WaveCrestMotion, AFlatSheetMovingInItsPlaneFormsNoCrest) {
   // Only the sheet's rim has normals with an in-plane part; its middle moves at right angles to them.
   for (size_t i = 0; i < points.size(); ++i) {
     const Vec3f& p = points[i];
-    if (p.x() > 0.1f && p.x() < 0.2f && p.z() > 0.1f && p.z() < 0.2f) ASSERT_EQ(run.kappa[i], 0.0f) << i;
+    if (p.x() > 0.1f && p.x() < 0.2f && p.z() > 0.1f && p.z() < 0.2f) {
+      ASSERT_EQ(run.kappa[i], 0.0f) << i;
+    }
   }
 }
 
