@@ -4,6 +4,7 @@
 #include <unordered_map>
 
 #include "sim/core/error.h"
+#include "sim/core/frame_order.h"
 #include "sim/io/frame_pattern.h"
 #include "sim/io/particle_file.h"
 
@@ -23,11 +24,13 @@ FluidFrame interpolate_frames(const FluidFrame& a, const FluidFrame& b, int fram
   const double span = b.time - a.time;
   const float s = span > 0.0 ? float((time - a.time) / span) : 0.0f;
   const float since_a = float(time - a.time);
-  // Particles of a, matched in b by id (by index when neither has ids and the counts agree);
-  // particles b does not have move on with their own velocity (or stay), those only b has are left out.
-  const bool by_index = !a.has_ids() && !b.has_ids() && a.size() == b.size();
+  // Particles of a, matched in b by id (by index when neither has ids, the counts agree and the order
+  // is kept); particles b does not have move on with their own velocity (or stay), those only b has are
+  // left out. Without ids and without a kept order nothing is matched.
+  const bool ids = a.has_ids() && b.has_ids();
+  const bool by_index = !ids && a.size() == b.size() && index_order_mismatch(a, b, span).empty();
   std::unordered_map<uint32_t, uint32_t> in_b;
-  if (!by_index)
+  if (ids)
     for (uint32_t j = 0; j < b.size(); ++j) in_b.emplace(b.id(j), j);
   const bool velocities = a.has_velocities() && b.has_velocities();
   for (uint32_t i = 0; i < a.size(); ++i) {

@@ -29,8 +29,8 @@ std::vector<int> missing_frames(const std::vector<int>& frames);
 
 // The fluid at `frame` (time `time`, between a.time and b.time): positions (and velocities, when
 // both have them) interpolated linearly between a and b for particles matched by id (by index when
-// neither has ids and counts agree); particles only a has move on with their velocity; particles
-// only b has are left out.
+// neither has ids, the counts agree and the order is kept: index_order_mismatch); particles only a
+// has move on with their velocity; particles only b has are left out.
 FluidFrame interpolate_frames(const FluidFrame& a, const FluidFrame& b, int frame, double time);
 
 }  // namespace spume
