@@ -58,8 +58,8 @@ namespace {
 
 class FileSequenceSource final : public FluidSource {
  public:
-  FileSequenceSource(std::string pattern, double fps, bool allow_gaps)
-      : pattern_(std::move(pattern)), fps_(fps), allow_gaps_(allow_gaps) {
+  FileSequenceSource(std::string pattern, double fps, bool allow_gaps, float velocity_scale)
+      : pattern_(std::move(pattern)), fps_(fps), allow_gaps_(allow_gaps), velocity_scale_(velocity_scale) {
     if (!is_frame_pattern(pattern_))
       fail(pattern_, ": a fluid file pattern needs one frame placeholder (%d, %04d or ####)");
     files_ = find_pattern_frames(pattern_);
@@ -93,19 +93,23 @@ class FileSequenceSource final : public FluidSource {
     if (f.size() == 0) fail(path, ": holds no fluid particles; every fluid frame needs at least one");
     f.index = frame;
     f.time = double(frame) / fps_;
+    if (velocity_scale_ != 1.0f)
+      for (Vec3f& v : f.velocities) v *= velocity_scale_;
     return f;
   }
 
   std::string pattern_;
   double fps_;
   bool allow_gaps_;
+  float velocity_scale_;
   std::vector<int> files_, frames_;
 };
 
 }  // namespace
 
-std::unique_ptr<FluidSource> make_file_source(const std::string& pattern, double fps, bool allow_gaps) {
-  return std::make_unique<FileSequenceSource>(pattern, fps, allow_gaps);
+std::unique_ptr<FluidSource> make_file_source(const std::string& pattern, double fps, bool allow_gaps,
+                                              float velocity_scale) {
+  return std::make_unique<FileSequenceSource>(pattern, fps, allow_gaps, velocity_scale);
 }
 
 }  // namespace spume

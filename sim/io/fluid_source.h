@@ -22,7 +22,9 @@ class FluidSource {
 // `allow_gaps`, frames missing between the first and last file are available too, interpolated
 // between the files on either side (interpolate_frames); without, they are simply not listed (the
 // stages refuse a range with a gap, naming the missing frame).
-std::unique_ptr<FluidSource> make_file_source(const std::string& pattern, double fps, bool allow_gaps = false);
+// `velocity_scale` multiplies the stored velocities as they are read (fluid.velocity_scale).
+std::unique_ptr<FluidSource> make_file_source(const std::string& pattern, double fps, bool allow_gaps = false,
+                                              float velocity_scale = 1.0f);
 
 // Frame numbers missing between consecutive entries of sorted `frames`.
 std::vector<int> missing_frames(const std::vector<int>& frames);

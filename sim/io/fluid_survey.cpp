@@ -20,7 +20,7 @@ namespace {
 
 using Json = nlohmann::json;
 
-constexpr int kSurveyVersion = 3;  // bump when what a frame's entry holds changes
+constexpr int kSurveyVersion = 4;  // bump when what a frame's entry holds changes
 
 // An entry's digest covers its file identity and what was measured in it: an entry edited by hand
 // (or by a tool that kept the file's identity) no longer matches and its frame is surveyed again.
@@ -41,6 +41,7 @@ Json to_json(const FrameSurvey& f) {
     j["max"] = {f.bounds.max.x(), f.bounds.max.y(), f.bounds.max.z()};
     j["sheet"] = f.sheet;
     j["centroid"] = {f.centroid.x(), f.centroid.y(), f.centroid.z()};
+    if (f.has_mean_velocity()) j["mean_velocity"] = {f.mean_velocity.x(), f.mean_velocity.y(), f.mean_velocity.z()};
   }
   j["digest"] = entry_digest(j);
   return j;
@@ -60,6 +61,8 @@ FrameSurvey frame_from_json(const Json& j) {
     for (int a = 0; a < 3; ++a) f.bounds.max[a] = j.at("max").at(size_t(a)).get<float>();
     f.sheet = j.at("sheet").get<std::array<float, 6>>();
     for (int a = 0; a < 3; ++a) f.centroid[a] = j.at("centroid").at(size_t(a)).get<float>();
+    if (j.contains("mean_velocity"))
+      for (int a = 0; a < 3; ++a) f.mean_velocity[a] = j.at("mean_velocity").at(size_t(a)).get<float>();
   } else {
     f.sheet.fill(NAN);
     f.centroid = Vec3f::Constant(NAN);
@@ -128,7 +131,7 @@ Aabb FluidSurvey::bounds() const {
   return box;
 }
 
-FrameSurvey survey_positions(const std::vector<Vec3f>& positions) {
+FrameSurvey survey_positions(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& velocities) {
   FrameSurvey f;
   f.particles = positions.size();
   // The 4 outermost coordinates per side, kept sorted outermost first (low sides: smallest).
@@ -155,6 +158,12 @@ FrameSurvey survey_positions(const std::vector<Vec3f>& positions) {
     f.sheet[side] = positions.empty() ? NAN : outer[side][rank];
   }
   for (int a = 0; a < 3; ++a) f.centroid[a] = positions.empty() ? NAN : float(sum[a] / double(positions.size()));
+  if (!velocities.empty()) {
+    double v[3] = {0.0, 0.0, 0.0};
+    for (const Vec3f& u : velocities)
+      for (int a = 0; a < 3; ++a) v[a] += double(u[a]);
+    for (int a = 0; a < 3; ++a) f.mean_velocity[a] = float(v[a] / double(velocities.size()));
+  }
   return f;
 }
 
@@ -225,7 +234,7 @@ FluidSurvey survey_fluid_files(const std::string& pattern, const std::vector<int
       try {
         const FluidFrame frame = read_fluid_file(path);
         const FileIdentity id = f.file;
-        f = survey_positions(frame.positions);
+        f = survey_positions(frame.positions, frame.velocities);
         f.frame = frames[todo[t]];
         f.file = id;
       } catch (const Error& error) {

@@ -7,6 +7,7 @@
 // entry carries a digest of its identity and measures; an entry that does not match it (edited by
 // hand) is not trusted: its frame is surveyed again, and the survey's notes say so.
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -27,6 +28,10 @@ struct FrameSurvey {
   // flat, a sheet sits there; a few stray particles do not move it.
   std::array<float, 6> sheet{};
   Vec3f centroid = Vec3f::Zero();  // the particles' mean position (NaN in an empty frame)
+  // The particles' mean stored velocity, as the file holds it (NaN without velocities): over a frame
+  // interval it should match the centroid's motion (check_stored_velocities).
+  Vec3f mean_velocity = Vec3f::Constant(NAN);
+  bool has_mean_velocity() const { return std::isfinite(mean_velocity.x()); }
   bool has_sheet() const { return particles >= 4; }  // a sheet of 4 particles, not strays
 };
 
@@ -46,8 +51,9 @@ struct FluidSurvey {
 FluidSurvey survey_fluid_files(const std::string& pattern, const std::vector<int>& frames,
                                const std::filesystem::path& keep, bool quiet);
 
-// One frame's entry from particle positions (exposed for tests); no particles: empty bounds, NaN sheets.
-FrameSurvey survey_positions(const std::vector<Vec3f>& positions);
+// One frame's entry from particle positions and stored velocities, if any (exposed for tests); no
+// particles: empty bounds, NaN sheets.
+FrameSurvey survey_positions(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& velocities = {});
 // Median nearest-neighbour distance over up to `samples` evenly strided particles.
 float median_spacing(const std::vector<Vec3f>& positions, size_t samples = 512);
 

@@ -44,6 +44,10 @@ inline constexpr KeySpec frames{.path = "fluid.frames", .type = Range, .value = 
 inline constexpr KeySpec allow_gaps{.path = "fluid.allow_gaps", .type = Boolean, .value = {0},
                                     .doc = "files: interpolate missing frames between their neighbours (else "
                                            "a missing frame is an error naming it)"};
+inline constexpr KeySpec velocity_scale{
+    .path = "fluid.velocity_scale", .value = {1}, .lo = 0, .hi = 1e6, .lo_bound = Open, .hi_bound = Closed,
+    .doc = "files: factor on the stored velocities, for caches in other units (the log measures them against "
+           "the motion)"};
 inline constexpr KeySpec blocks{.path = "fluid.blocks", .type = List, .default_text = "required with \"solver\"",
                                 .doc = "solver: the initial fluid, cuboids filled on a lattice of spacing 2 r"};
 inline constexpr KeySpec block_min{.path = "fluid.blocks[].min", .type = Vec3, .unit = "m", .lo = -1e6, .hi = 1e6,
@@ -53,8 +57,8 @@ inline constexpr KeySpec block_max{.path = "fluid.blocks[].max", .type = Vec3, .
                                    .lo_bound = Closed, .hi_bound = Closed, .default_text = "required",
                                    .doc = "a block's upper corner, above min on every axis"};
 inline constexpr auto all = std::to_array<const KeySpec*>(
-    {&source, &files, &radius, &support_radius, &fps, &rest_density, &frames, &allow_gaps, &blocks, &block_min,
-     &block_max});
+    {&source, &files, &radius, &support_radius, &fps, &rest_density, &frames, &allow_gaps, &velocity_scale, &blocks,
+     &block_min, &block_max});
 }  // namespace fluid
 
 // Solver settings (fluid.solver.*): sim/fluid/fluid_params.h explains each choice.

@@ -7,6 +7,7 @@
 #include "sim/pipeline/fluid_stage.h"
 #include "sim/scene/container.h"
 #include "sim/scene/tank_fit.h"
+#include "sim/scene/velocity_check.h"
 #include "sim/io/fluid_source.h"
 
 namespace spume {
@@ -70,6 +71,9 @@ SceneInputs read_scene_inputs(const SimScene& scene, const std::filesystem::path
     check_particle_spacing(scene.fluid, in.survey.spacing, in.survey.frames.front().particles);
     const std::string warning = spacing_warning(scene.fluid.particle_radius, in.survey.spacing);
     if (!warning.empty()) in.notes.push_back(warning);
+    const VelocityCheck velocities = check_stored_velocities(in.survey, scene.fluid.fps, scene.fluid.particle_radius,
+                                                             scene.velocity_scale);
+    if (!velocities.note.empty()) in.notes.push_back(velocities.note);
   }
   in.solids = scene.solids;
   if (!solver) {

@@ -46,6 +46,7 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
     const std::filesystem::path pattern(*files);
     scene.file_pattern = pattern.is_absolute() ? pattern.string() : (scene_dir / pattern).lexically_normal().string();
     scene.allow_gaps = fluid.boolean(k::fluid::allow_gaps);
+    scene.velocity_scale = float(fluid.number(k::fluid::velocity_scale));
   }
   if (scene.source == FluidSourceKind::Solver) scene.solver = read_fluid_solver(fluid, scene.gravity);
   // Files: every file found unless limited; the solver: the declared range unless given.

@@ -27,6 +27,7 @@ struct SimScene {
   FluidSourceKind source = FluidSourceKind::Files;
   std::string file_pattern;             // Files: resolved against the scene file's folder
   bool allow_gaps = false;              // Files: frames missing between files are interpolated
+  float velocity_scale = 1.0f;          // Files: factor on the stored velocities (caches in other units)
   FluidSequenceInfo fluid;
   std::optional<std::pair<int, int>> frames;  // inclusive frame range to use, if limited
   Vec3f gravity = Vec3f(0.0f, -9.81f, 0.0f);  // m/s^2
