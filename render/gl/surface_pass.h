@@ -13,6 +13,8 @@
 //     path through the water (Beer-Lambert) plus an in-scattered deep colour; GGX sun highlight
 //     (shadowed). See water_shader.cpp.
 //  5. down-sample (supersampling only) and read the float targets back.
+// The steps are in surface_gpu.h, the targets in surface_targets.h, the frame's camera and matrices in
+// surface_view.h.
 // Colour is LINEAR RGB (the image writer encodes sRGB). Assumes the camera is above the water and the
 // ground. Water is treated as clear for shadows (no caustics, no shadow cast by water).
 #include <memory>
@@ -43,6 +45,7 @@ struct SurfaceScene {
   Environment environment;
   WaterLook water;
 
+  bool shows_water() const;  // a fluid surface with triangles
   // A GL context is needed only when there is a surface or a solid to draw.
   bool shows_geometry() const;
 };
@@ -85,7 +88,10 @@ class SurfacePass {
   bool has_context() const { return gpu_ != nullptr; }
 
  private:
-  struct Gpu;
+  struct Gpu;  // the GL state kept between frames and the passes' steps (surface_gpu.h)
+  // The frame drawn with GL: creates the context on first use, then passes 0-5 (above).
+  SurfaceImage render_gl(const SurfaceScene& scene, const Camera& camera, SurfacePassStats& stats);
+
   SurfacePassOptions options_;
   std::unique_ptr<Gpu> gpu_;
 };
