@@ -24,7 +24,7 @@ namespace fs = std::filesystem;
 using Result = spume::testing::CommandResult;  // output: stdout; err: stderr
 
 // Runs spume with stdout and stderr captured separately (both are pipes, not terminals).
-Result run_spume(const std::string& arguments, const std::string& environment = "") {
+Result spume_apart(const std::string& arguments, const std::string& environment = "") {
   return spume::testing::run_spume(arguments, {.separate_stderr = true, .environment = environment});
 }
 
@@ -44,7 +44,7 @@ class FarmCommand : public ::testing::Test {
   static void SetUpTestSuite() {
     temp = std::make_unique<spume::testing::TempDir>("FarmCommand");
     root = temp->path;
-    const Result r = run_spume("simulate " + kScene + " --quiet --out " + (root / "out").string());
+    const Result r = spume_apart("simulate " + kScene + " --quiet --out " + (root / "out").string());
     ASSERT_EQ(r.status, 0) << r.err;
   }
   static void TearDownTestSuite() { temp.reset(); }
@@ -68,31 +68,31 @@ std::unique_ptr<spume::testing::TempDir> FarmCommand::temp;
 fs::path FarmCommand::root;
 
 TEST_F(FarmCommand, ChunksPrintOneFrameSpecPerLine) {
-  Result r = run_spume("farm chunks " + args() + " --chunk 3");
+  Result r = spume_apart("farm chunks " + args() + " --chunk 3");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.output, "0-2\n3-5\n6-7\n");
-  r = run_spume("farm chunks " + args() + " --chunk 1 --frames 5-99:2");  // clamped to the scene's 0-7
+  r = spume_apart("farm chunks " + args() + " --chunk 1 --frames 5-99:2");  // clamped to the scene's 0-7
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.output, "5\n7\n");
-  r = run_spume("farm chunks " + args());
+  r = spume_apart("farm chunks " + args());
   EXPECT_EQ(r.status, 2);  // a usage error
   EXPECT_NE(r.err.find("--chunk N"), std::string::npos) << r.err;
 }
 
 TEST_F(FarmCommand, ChunksRenderedByOtherProcessesAreByteIdenticalToOneRender) {
-  const Result whole = run_spume("render " + args());
+  const Result whole = spume_apart("render " + args());
   ASSERT_EQ(whole.status, 0) << whole.err;
   EXPECT_EQ(count_lines_starting(whole.output, "Saved: "), kFrames) << whole.output;
   std::vector<std::string> reference;
   for (int f = 0; f < kFrames; ++f) reference.push_back(spume::testing::read_file(frame(f)));
   fs::remove_all(frames_dir());
 
-  const Result chunks = run_spume("farm chunks " + args() + " --chunk 3");
+  const Result chunks = spume_apart("farm chunks " + args() + " --chunk 3");
   ASSERT_EQ(chunks.status, 0) << chunks.err;
   std::istringstream specs(chunks.output);
   int saved = 0;
   for (std::string spec; std::getline(specs, spec);) {
-    const Result part = run_spume("render " + args() + " --frames " + spec);
+    const Result part = spume_apart("render " + args() + " --frames " + spec);
     ASSERT_EQ(part.status, 0) << part.err;
     saved += count_lines_starting(part.output, "Saved: ");
   }
@@ -101,16 +101,16 @@ TEST_F(FarmCommand, ChunksRenderedByOtherProcessesAreByteIdenticalToOneRender) {
 }
 
 TEST_F(FarmCommand, RenderResumesWithOnlyMissingOrBrokenFrames) {
-  ASSERT_EQ(run_spume("render " + args()).status, 0);
+  ASSERT_EQ(spume_apart("render " + args()).status, 0);
   fs::remove(frame(2));
   fs::remove(frame(6));
   std::ofstream(frame(4), std::ios::trunc) << "half a png";  // e.g. a copy cut short
-  Result r = run_spume("render " + args());
+  Result r = spume_apart("render " + args());
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.output, "Saved: " + frame(2).string() + "\nSaved: " + frame(4).string() + "\nSaved: " +
                        frame(6).string() + "\n");
   EXPECT_EQ(count_lines_starting(r.output, "Saved: "), 3);
-  r = run_spume("render " + args() + " --overwrite --frames 1-3");
+  r = spume_apart("render " + args() + " --overwrite --frames 1-3");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(count_lines_starting(r.output, "Saved: "), 3);
   for (const auto& entry : fs::directory_iterator(frames_dir()))
@@ -118,7 +118,7 @@ TEST_F(FarmCommand, RenderResumesWithOnlyMissingOrBrokenFrames) {
 }
 
 TEST_F(FarmCommand, ProgressIsOneParseableLinePerFrameInLogs) {
-  const Result r = run_spume("render " + args());
+  const Result r = spume_apart("render " + args());
   ASSERT_EQ(r.status, 0) << r.err;
   for (int k = 1; k <= kFrames; ++k) {
     const std::string line = "render farm_tiny: frame " + std::to_string(k) + "/" + std::to_string(kFrames) + "  ";
@@ -139,7 +139,7 @@ TEST_F(FarmCommand, FailedFrameExitsNonZeroAndNamesTheFrame) {
     f.seekp(100);
     f.put('\x7f');
   }
-  Result r = run_spume("render " + kScene + " --out " + out.string());
+  Result r = spume_apart("render " + kScene + " --out " + out.string());
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("error: frame 5: "), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("diffuse_0005.spd"), std::string::npos) << r.err;
@@ -147,7 +147,7 @@ TEST_F(FarmCommand, FailedFrameExitsNonZeroAndNamesTheFrame) {
 
   // A missing cache is found before anything is rendered, and named.
   fs::remove(cache);
-  r = run_spume("render " + kScene + " --out " + out.string() + " --overwrite");
+  r = spume_apart("render " + kScene + " --out " + out.string() + " --overwrite");
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("diffuse_0005.spd is missing"), std::string::npos) << r.err;
   EXPECT_EQ(count_lines_starting(r.output, "Saved: "), 0) << r.output;
@@ -155,7 +155,7 @@ TEST_F(FarmCommand, FailedFrameExitsNonZeroAndNamesTheFrame) {
 
 TEST_F(FarmCommand, SlurmScriptsHaveASimulationJobOnlyWhenTheCachesAreStale) {
   const fs::path fresh = root / name();
-  Result r = run_spume("farm slurm " + kScene + " --out " + fresh.string() + " --chunk 2 --partition fx");
+  Result r = spume_apart("farm slurm " + kScene + " --out " + fresh.string() + " --chunk 2 --partition fx");
   ASSERT_EQ(r.status, 0) << r.err;
   const fs::path farm = fresh / "farm_tiny/farm";
   EXPECT_EQ(r.output, "Saved: " + (farm / "simulate.sbatch").string() + "\nSaved: " + (farm / "render.sbatch").string() +
@@ -166,7 +166,7 @@ TEST_F(FarmCommand, SlurmScriptsHaveASimulationJobOnlyWhenTheCachesAreStale) {
   EXPECT_NE(render.find("'render' '" + kScene + "' '--out' '" + fresh.string() + "'"), std::string::npos) << render;
   EXPECT_NE(spume::testing::read_file(farm / "submit.sh").find("--dependency=afterok:"), std::string::npos);
 
-  r = run_spume("farm slurm " + args() + " --chunk 2");  // the suite's caches are current
+  r = spume_apart("farm slurm " + args() + " --chunk 2");  // the suite's caches are current
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_FALSE(fs::exists(root / "out/farm_tiny/farm/simulate.sbatch"));
   EXPECT_NE(r.err.find("no simulation job"), std::string::npos) << r.err;
@@ -174,16 +174,16 @@ TEST_F(FarmCommand, SlurmScriptsHaveASimulationJobOnlyWhenTheCachesAreStale) {
 }
 
 TEST_F(FarmCommand, SubmitWithoutSbatchIsAClearError) {
-  const Result r = run_spume("farm slurm " + args() + " --chunk 2 --submit", "PATH=/nonexistent");
+  const Result r = spume_apart("farm slurm " + args() + " --chunk 2 --submit", "PATH=/nonexistent");
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("sbatch is not on PATH"), std::string::npos) << r.err;
 }
 
 TEST_F(FarmCommand, SimulateFramesMustBeOneUnbrokenRange) {
-  Result r = run_spume("simulate " + args() + " --frames 0-6:2");
+  Result r = spume_apart("simulate " + args() + " --frames 0-6:2");
   EXPECT_EQ(r.status, 2);  // usage errors
   EXPECT_NE(r.err.find("--frames: \"0-6:2\" is not one unbroken range"), std::string::npos) << r.err;
-  r = run_spume("simulate " + args() + " --frames 0-x");
+  r = spume_apart("simulate " + args() + " --frames 0-x");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("accepted forms"), std::string::npos) << r.err;
 }
