@@ -202,6 +202,7 @@ TEST(FluidRestart, CorruptFilesAreRefusedNamingTheFile) {
   EXPECT_NE(error_reading(file).find(file.string()), std::string::npos);
   rewrite("SPUMEFL1" + bytes.substr(8));
   EXPECT_NE(error_reading(file).find("not a spume restart file"), std::string::npos) << error_reading(file);
+  fs::remove(file);
   EXPECT_NE(error_reading(file).find("no such file"), std::string::npos) << error_reading(file);
 }
 
