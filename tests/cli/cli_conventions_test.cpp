@@ -12,7 +12,8 @@
 #include <sstream>
 #include <tuple>
 
-#include "tests/sim/run_command.h"
+#include "tests/support/run_spume.h"
+#include "tests/support/temp_dir.h"
 
 namespace spume {
 namespace {
@@ -24,15 +25,10 @@ struct Output {
   std::string out, err;
 };
 
-// Runs spume with stdout and stderr kept apart (stderr through a file).
+// Runs spume with stdout and stderr kept apart.
 Output spume(const std::string& arguments) {
-  const fs::path err = fs::temp_directory_path() / ("spume_cli_conv_err_" + std::to_string(::getpid()));
-  const CommandResult r = run_command(std::string(SPUME_BINARY) + " " + arguments + " 2>" + err.string());
-  std::ifstream in(err);
-  std::stringstream text;
-  text << in.rdbuf();
-  fs::remove(err);
-  return {r.status, r.output, text.str()};
+  const testing::CommandResult r = testing::run_spume(arguments, {.separate_stderr = true});
+  return {r.status, r.output, r.err};
 }
 
 std::string first_line(const std::string& text) { return text.substr(0, text.find('\n')); }
@@ -220,12 +216,8 @@ TEST(CliConventions, UnknownCommandsSuggestTheClosest) {
 
 class SceneErrors : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir = fs::temp_directory_path() / ("spume_cli_conv_" + std::to_string(::getpid()));
-    fs::create_directories(dir);
-  }
-  void TearDown() override { fs::remove_all(dir); }
-  fs::path dir;
+  const testing::TempDir temp;
+  const fs::path& dir = temp.path;
 };
 
 TEST_F(SceneErrors, ExitOneNamingTheCommandOnce) {

@@ -5,9 +5,12 @@
 
 #include "render/app/cli/cli_args.h"
 #include "render/app/cli/cli_help.h"
+#include "tests/support/error_of.h"
 
 namespace spume::cli {
 namespace {
+
+using testing::error_of;
 
 const std::vector<OptionSpec> kSpecs = {
     {"out", "DIR", "output root"},
@@ -15,20 +18,6 @@ const std::vector<OptionSpec> kSpecs = {
     {"set", "KEY=VALUE", "override a key", true},
     {"quiet", "", "no progress"},
 };
-
-// The message of the UsageError fn throws; a plain Error or nothing fails the test.
-std::string usage_error_of(const std::function<void()>& fn) {
-  try {
-    fn();
-  } catch (const UsageError& e) {
-    return e.what();
-  } catch (const Error& e) {
-    ADD_FAILURE() << "an Error that is not a UsageError: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "expected a UsageError";
-  return "";
-}
 
 TEST(CliParser, ReadsOperandsFlagsValuesAndRepeats) {
   const ParsedArgs a =
@@ -61,43 +50,43 @@ TEST(CliParser, HelpStopsParsingSoLaterMistakesDoNotHideIt) {
 }
 
 TEST(CliParser, UnknownOptionsAreUsageErrorsWithTheClosestOption) {
-  EXPECT_EQ(usage_error_of([] { parse({"--thread", "2"}, kSpecs); }),
+  EXPECT_EQ(error_of<UsageError>([] { parse({"--thread", "2"}, kSpecs); }),
             "unknown option --thread (did you mean --threads?)");
-  EXPECT_EQ(usage_error_of([] { parse({"--qiet"}, kSpecs); }), "unknown option --qiet (did you mean --quiet?)");
+  EXPECT_EQ(error_of<UsageError>([] { parse({"--qiet"}, kSpecs); }), "unknown option --qiet (did you mean --quiet?)");
   // Far from every option, but the start of only one.
-  EXPECT_EQ(usage_error_of([] { parse({"--thr", "2"}, kSpecs); }), "unknown option --thr (did you mean --threads?)");
-  EXPECT_EQ(usage_error_of([] { parse({"--frobnicate"}, kSpecs); }), "unknown option --frobnicate");
-  EXPECT_NE(usage_error_of([] { parse({"-q"}, kSpecs); }).find("unknown option -q"), std::string::npos);
+  EXPECT_EQ(error_of<UsageError>([] { parse({"--thr", "2"}, kSpecs); }), "unknown option --thr (did you mean --threads?)");
+  EXPECT_EQ(error_of<UsageError>([] { parse({"--frobnicate"}, kSpecs); }), "unknown option --frobnicate");
+  EXPECT_NE(error_of<UsageError>([] { parse({"-q"}, kSpecs); }).find("unknown option -q"), std::string::npos);
 }
 
 TEST(CliParser, MissingRepeatedAndUnexpectedValuesAreUsageErrors) {
-  EXPECT_EQ(usage_error_of([] { parse({"scene.json", "--out"}, kSpecs); }), "--out needs a value: --out DIR");
-  EXPECT_EQ(usage_error_of([] { parse({"--out", "a", "--out=b"}, kSpecs); }),
+  EXPECT_EQ(error_of<UsageError>([] { parse({"scene.json", "--out"}, kSpecs); }), "--out needs a value: --out DIR");
+  EXPECT_EQ(error_of<UsageError>([] { parse({"--out", "a", "--out=b"}, kSpecs); }),
             "--out given twice (\"a\" and \"b\"); give it once");
-  EXPECT_EQ(usage_error_of([] { parse({"--quiet=yes"}, kSpecs); }), "--quiet takes no value (found --quiet=yes)");
+  EXPECT_EQ(error_of<UsageError>([] { parse({"--quiet=yes"}, kSpecs); }), "--quiet takes no value (found --quiet=yes)");
 }
 
 TEST(CliParser, BadOptionValuesAreUsageErrors) {
-  EXPECT_EQ(usage_error_of([] { parse_int("x", "--threads", 1, 1024); }),
+  EXPECT_EQ(error_of<UsageError>([] { parse_int("x", "--threads", 1, 1024); }),
             "--threads: \"x\" is not a whole number from 1 to 1024");
-  EXPECT_EQ(usage_error_of([] { parse_int("0", "--threads", 1, 1024); }),
+  EXPECT_EQ(error_of<UsageError>([] { parse_int("0", "--threads", 1, 1024); }),
             "--threads: \"0\" is not a whole number from 1 to 1024");
-  EXPECT_EQ(usage_error_of([] { parse_int("3.5", "--chunk", 1, 10); }),
+  EXPECT_EQ(error_of<UsageError>([] { parse_int("3.5", "--chunk", 1, 10); }),
             "--chunk: \"3.5\" is not a whole number from 1 to 10");
   EXPECT_EQ(parse_int("17", "--chunk", 1, 100), 17);
-  EXPECT_EQ(usage_error_of([] { parse_double("0.02m", "--radius"); }), "--radius: \"0.02m\" is not a number");
+  EXPECT_EQ(error_of<UsageError>([] { parse_double("0.02m", "--radius"); }), "--radius: \"0.02m\" is not a number");
   EXPECT_DOUBLE_EQ(parse_double("2e-2", "--radius"), 0.02);
-  EXPECT_NE(usage_error_of([] { check_frame_spec("0-x", "--frames"); }).find("--frames"), std::string::npos);
-  EXPECT_NE(usage_error_of([] { check_frame_spec("5-3", "--frames"); }).find("5-3"), std::string::npos);
+  EXPECT_NE(error_of<UsageError>([] { check_frame_spec("0-x", "--frames"); }).find("--frames"), std::string::npos);
+  EXPECT_NE(error_of<UsageError>([] { check_frame_spec("5-3", "--frames"); }).find("5-3"), std::string::npos);
   check_frame_spec("1-3,5,10-20:2", "--frames");  // no throw
   EXPECT_EQ(parse_frame_range("4-9", "--frames"), std::make_pair(4, 9));
-  EXPECT_NE(usage_error_of([] { parse_frame_range("0-6:2", "--frames"); }).find("is not one unbroken range"),
+  EXPECT_NE(error_of<UsageError>([] { parse_frame_range("0-6:2", "--frames"); }).find("is not one unbroken range"),
             std::string::npos);
-  EXPECT_NE(usage_error_of([] { parse_frame_range("0-x", "--frames"); }).find("accepted forms"), std::string::npos);
+  EXPECT_NE(error_of<UsageError>([] { parse_frame_range("0-x", "--frames"); }).find("accepted forms"), std::string::npos);
 }
 
 TEST(CliParser, AsUsageTurnsErrorsIntoUsageErrorsAndKeepsTheMessage) {
-  EXPECT_EQ(usage_error_of([] { as_usage([] { fail("--set x: bad"); }); }), "--set x: bad");
+  EXPECT_EQ(error_of<UsageError>([] { as_usage([] { fail("--set x: bad"); }); }), "--set x: bad");
   EXPECT_EQ(as_usage([] { return 7; }), 7);
 }
 

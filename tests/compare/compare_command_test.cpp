@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "tests/sim/run_command.h"
+#include "tests/support/run_spume.h"
 #include "tests/compare/compare_test_support.h"
 #include "render/image/png_io.h"
 
@@ -16,14 +16,14 @@ namespace spume {
 namespace {
 
 namespace fs = std::filesystem;
-using test::flat_image;
-using test::fresh_dir;
-using test::read_csv;
-using test::with_change;
+using testing::CommandResult;
+using testing::flat_image;
+using testing::fresh_dir;
+using testing::read_csv;
+using testing::run_spume;
+using testing::with_change;
 
-CommandResult compare(const std::string& arguments) {
-  return run_command(std::string(SPUME_BINARY) + " compare --quiet " + arguments + " 2>&1");
-}
+CommandResult compare(const std::string& arguments) { return run_spume("compare --quiet " + arguments); }
 
 // Shell-quoted; appended piecewise, since GCC 12 warns falsely (-Wrestrict) on "'" + s + "'".
 std::string q(const fs::path& p) {
@@ -52,7 +52,7 @@ std::map<std::string, std::string> csv_row(const fs::path& out, const std::strin
 TEST(CompareCommand, IdenticalSequencesPassWithZeroErrorAndInfinitePsnr) {
   const fs::path dir = fresh_dir("cmd_identical");
   for (int f = 0; f < 3; ++f) {
-    const ImageRGB8 img = test::random_image(32, 24, uint32_t(f));
+    const ImageRGB8 img = testing::random_image(32, 24, uint32_t(f));
     write_png(dir / "ref" / frame_name(f), img);
     write_png(dir / "new" / frame_name(f), img);
   }
@@ -77,7 +77,7 @@ TEST(CompareCommand, IdenticalSequencesPassWithZeroErrorAndInfinitePsnr) {
   }
   EXPECT_EQ(rows.back()[0], "overall");
   EXPECT_EQ(rows.back()[3], "pass");
-  const auto j = nlohmann::json::parse(test::read_text(dir / "out" / "summary.json"));
+  const auto j = nlohmann::json::parse(testing::read_file(dir / "out" / "summary.json"));
   EXPECT_EQ(j["overall"]["verdict"], "pass");
   EXPECT_EQ(j["overall"]["identical"], 3);
   EXPECT_TRUE(j["overall"]["min_psnr_db"].is_null());  // infinite
@@ -131,7 +131,7 @@ TEST(CompareCommand, MissingOtherSizeAndUnreadableFramesFailByName) {
   write_png(dir / "new" / frame_name(0), flat_image(32, 24, 50));
   // 0001 missing in new
   write_png(dir / "new" / frame_name(2), flat_image(16, 12, 50));
-  test::write_text(dir / "new" / frame_name(3), "not a png at all");
+  testing::write_file(dir / "new" / frame_name(3), "not a png at all");
   write_png(dir / "new" / frame_name(4), flat_image(32, 24, 50));
   write_png(dir / "new" / frame_name(5), flat_image(32, 24, 50));  // missing in reference
   const CommandResult r = compare(q(dir / "ref") + " " + q(dir / "new") + " --out " + q(dir / "out"));
@@ -156,7 +156,7 @@ TEST(CompareCommand, MissingOtherSizeAndUnreadableFramesFailByName) {
   EXPECT_EQ(csv_row(dir / "out", "0004.png")["status"], "identical");
   // Worst first: the frames that could not be compared lead, unreadable first.
   EXPECT_EQ(csv_row(dir / "out", "0003.png")["rank"], "1");
-  const auto j = nlohmann::json::parse(test::read_text(dir / "out" / "summary.json"));
+  const auto j = nlohmann::json::parse(testing::read_file(dir / "out" / "summary.json"));
   EXPECT_EQ(j["overall"]["missing"], 2);
   EXPECT_EQ(j["overall"]["size_mismatch"], 1);
   EXPECT_EQ(j["overall"]["unreadable"], 1);
@@ -167,7 +167,7 @@ TEST(CompareCommand, UsageErrorsExitTwoAndSayWhatIsAllowed) {
   const fs::path dir = fresh_dir("cmd_usage");
   write_png(dir / "a.png", flat_image(4, 4, 0));
   const std::string a = q(dir / "a.png");
-  EXPECT_EQ(run_command(std::string(SPUME_BINARY) + " compare 2>&1").status, 2);
+  EXPECT_EQ(run_spume("compare").status, 2);
   struct Case {
     std::string args, says;
   };
@@ -194,7 +194,7 @@ TEST(CompareCommand, UsageErrorsExitTwoAndSayWhatIsAllowed) {
 TEST(CompareCommand, SameOutputsForAnyThreadCount) {
   const fs::path dir = fresh_dir("cmd_threads");
   for (int f = 0; f < 7; ++f) {
-    const ImageRGB8 img = test::random_image(96, 54, uint32_t(100 + f));
+    const ImageRGB8 img = testing::random_image(96, 54, uint32_t(100 + f));
     write_png(dir / "ref" / frame_name(f), img);
     ImageRGB8 changed = img;
     for (int k = 0; k < f * 40; ++k) changed.rgb[size_t(k * 37) % changed.rgb.size()] ^= uint8_t(1 + k % 7);
@@ -213,7 +213,7 @@ TEST(CompareCommand, SameOutputsForAnyThreadCount) {
   for (const auto& entry : fs::recursive_directory_iterator(dir / "out1")) {
     if (!entry.is_regular_file()) continue;
     const fs::path rel = fs::relative(entry.path(), dir / "out1");
-    EXPECT_EQ(test::read_text(entry.path()), test::read_text(dir / "out2" / rel)) << rel;
+    EXPECT_EQ(testing::read_file(entry.path()), testing::read_file(dir / "out2" / rel)) << rel;
     ++files;
   }
   EXPECT_EQ(files, 3u + 7 * 2 + 6 * 3);  // summaries and report, 2 thumbnails a frame, 3 images a failing frame
@@ -227,7 +227,7 @@ TEST(CompareCommand, ImagesOfAnEarlierRunAreRemoved) {
   ASSERT_EQ(compare(args).status, 1);
   EXPECT_TRUE(fs::is_regular_file(dir / "out" / "diff" / "0000_heat.png"));
   write_png(dir / "new" / "0000.png", flat_image(20, 20, 10));
-  test::write_text(dir / "out" / "mine.txt", "the user's");
+  testing::write_file(dir / "out" / "mine.txt", "the user's");
   ASSERT_EQ(compare(args).status, 0);
   EXPECT_FALSE(fs::exists(dir / "out" / "diff" / "0000_heat.png"));
   EXPECT_FALSE(fs::exists(dir / "out" / "thumbs" / "0000_heat.png"));

@@ -1,17 +1,16 @@
 #pragma once
 // Images and folders for the comparison tests: flat and random pictures, one-pixel edits, a fresh
-// temporary folder per test, and a small CSV reader for summary.csv.
+// folder per test under out/tests/compare (kept after a failure, to be looked at).
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
 #include <random>
-#include <sstream>
 #include <string>
-#include <vector>
 
 #include "render/image/image.h"
+#include "tests/support/csv.h"
+#include "tests/support/files.h"
 
-namespace spume::test {
+namespace spume::testing {
 
 inline ImageRGB8 flat_image(int w, int h, uint8_t value) {
   ImageRGB8 img(w, h);
@@ -40,43 +39,4 @@ inline std::filesystem::path fresh_dir(const std::string& name) {
   return dir;
 }
 
-inline void write_text(const std::filesystem::path& path, const std::string& text) {
-  std::filesystem::create_directories(path.parent_path());
-  std::ofstream(path, std::ios::binary) << text;
-}
-
-inline std::string read_text(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Rows of cells; quoted cells ("a,b" and "" for a quote) as RFC 4180 writes them.
-inline std::vector<std::vector<std::string>> read_csv(const std::filesystem::path& path) {
-  std::vector<std::vector<std::string>> rows;
-  const std::string text = read_text(path);
-  std::vector<std::string> row;
-  std::string cell;
-  bool quoted = false;
-  for (size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (quoted) {
-      if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') cell += '"', ++i;
-      else if (c == '"') quoted = false;
-      else cell += c;
-    } else if (c == '"') {
-      quoted = true;
-    } else if (c == ',') {
-      row.push_back(cell), cell.clear();
-    } else if (c == '\n') {
-      row.push_back(cell), cell.clear();
-      rows.push_back(row), row.clear();
-    } else {
-      cell += c;
-    }
-  }
-  return rows;
-}
-
-}  // namespace spume::test
+}  // namespace spume::testing

@@ -9,11 +9,11 @@ namespace spume::compare {
 namespace {
 
 namespace fs = std::filesystem;
-using test::fresh_dir;
-using test::write_text;
+using testing::fresh_dir;
+using testing::write_file;
 
 // resolve_frames only lists files; their contents are read later, so empty files do here.
-void touch(const fs::path& p) { write_text(p, ""); }
+void touch(const fs::path& p) { write_file(p, ""); }
 
 TEST(FrameSet, TwoFiles) {
   const fs::path dir = fresh_dir("set_files");

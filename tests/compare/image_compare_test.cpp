@@ -14,8 +14,8 @@
 namespace spume {
 namespace {
 
-using test::flat_image;
-using test::with_change;
+using testing::flat_image;
+using testing::with_change;
 
 const ImageRGB8 kGrey = flat_image(100, 100, 100);
 
@@ -28,7 +28,7 @@ TEST(ImageCompare, RegressionRuleIsTheGoldenTestsRule) {
 }
 
 TEST(ImageCompare, IdenticalImagesHaveZeroErrorAndInfinitePsnr) {
-  const ImageRGB8 img = test::random_image(37, 23, 5);
+  const ImageRGB8 img = testing::random_image(37, 23, 5);
   const PixelStats s = compare_pixels(img, img, regression_thresholds());
   EXPECT_EQ(s.pixels, 37u * 23u);
   EXPECT_EQ(s.over_fail, 0u);

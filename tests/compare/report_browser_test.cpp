@@ -10,7 +10,7 @@
 #include <chrono>
 #include <regex>
 
-#include "tests/sim/run_command.h"
+#include "tests/support/run_spume.h"
 #include "tests/compare/compare_test_support.h"
 #include "render/image/png_io.h"
 
@@ -18,8 +18,11 @@ namespace spume {
 namespace {
 
 namespace fs = std::filesystem;
-using test::flat_image;
-using test::fresh_dir;
+using testing::CommandResult;
+using testing::flat_image;
+using testing::run_command;
+using testing::run_spume;
+using testing::fresh_dir;
 
 std::string browser() {
   for (const char* path : {"/usr/bin/chromium", "/usr/bin/chromium-browser"})
@@ -38,7 +41,7 @@ std::string dump_dom(const fs::path& page, const std::string& fragment = "") {
       " --disable-component-update --disable-sync --user-data-dir=" + std::string(profile) +
       " --dump-dom 'file://" + fs::absolute(page).string() + fragment + "' 2>" + err.string();
   const CommandResult r = run_command(command);
-  EXPECT_EQ(r.status, 0) << command << "\n" << test::read_text(err);
+  EXPECT_EQ(r.status, 0) << command << "\n" << testing::read_file(err);
   fs::remove_all(profile);
   fs::remove(err);
   return r.output;
@@ -88,19 +91,19 @@ std::string frame_name(int f) {
 // unreadable.
 fs::path make_report(const std::string& name) {  // each test its own folder: ctest runs them in parallel
   const fs::path dir = fresh_dir(name);
-  for (int f = 0; f < 6; ++f) write_png(dir / "ref" / frame_name(f), test::random_image(64, 36, uint32_t(f)));
-  write_png(dir / "new" / frame_name(0), test::random_image(64, 36, 0));
-  ImageRGB8 changed = test::random_image(64, 36, 1);
+  for (int f = 0; f < 6; ++f) write_png(dir / "ref" / frame_name(f), testing::random_image(64, 36, uint32_t(f)));
+  write_png(dir / "new" / frame_name(0), testing::random_image(64, 36, 0));
+  ImageRGB8 changed = testing::random_image(64, 36, 1);
   for (int y = 10; y < 16; ++y)
     for (int x = 20; x < 26; ++x) changed.at(x, y)[1] = uint8_t(changed.at(x, y)[1] ^ 0x40);
   write_png(dir / "new" / frame_name(1), changed);
-  write_png(dir / "new" / frame_name(3), test::random_image(32, 18, 3));
-  ImageRGB8 nearly = test::random_image(64, 36, 4);
+  write_png(dir / "new" / frame_name(3), testing::random_image(32, 18, 3));
+  ImageRGB8 nearly = testing::random_image(64, 36, 4);
   nearly.at(3, 3)[0] = uint8_t(nearly.at(3, 3)[0] ^ 1);
   write_png(dir / "new" / frame_name(4), nearly);
-  test::write_text(dir / "new" / frame_name(5), "truncated");
-  const CommandResult r = run_command(std::string(SPUME_BINARY) + " compare --quiet '" + (dir / "ref").string() + "' '" +
-                                      (dir / "new").string() + "' --out '" + (dir / "out").string() + "' 2>&1");
+  testing::write_file(dir / "new" / frame_name(5), "truncated");
+  const CommandResult r = run_spume("compare --quiet '" + (dir / "ref").string() + "' '" + (dir / "new").string() +
+                                     "' --out '" + (dir / "out").string() + "'");
   EXPECT_EQ(r.status, 1) << r.output;
   return dir / "out" / "report.html";
 }
@@ -108,7 +111,7 @@ fs::path make_report(const std::string& name) {  // each test its own folder: ct
 TEST(ReportBrowser, ShowsFramesWorstFirstWithVerdictsAndLoadsTheViewer) {
   if (browser().empty()) GTEST_SKIP() << "no Chromium installed (apt-get install chromium)";
   const fs::path page = make_report("browser_dom");
-  const std::string html = test::read_text(page);
+  const std::string html = testing::read_file(page);
   // Self-contained: nothing is fetched from a network.
   EXPECT_EQ(html.find("http://"), std::string::npos);
   EXPECT_EQ(html.find("https://"), std::string::npos);
@@ -202,12 +205,12 @@ const char* const kInteractionScript = R"JS(<script>
 TEST(ReportBrowser, ViewerAndTableRespondToClicksKeysAndControls) {
   if (browser().empty()) GTEST_SKIP() << "no Chromium installed (apt-get install chromium)";
   const fs::path page = make_report("browser_driven");
-  std::string html = test::read_text(page);
+  std::string html = testing::read_file(page);
   const size_t end = html.rfind("</body>");
   ASSERT_NE(end, std::string::npos);
   html.insert(end, kInteractionScript);
   const fs::path driven = page.parent_path() / "driven.html";  // beside it: the same relative links
-  test::write_text(driven, html);
+  testing::write_file(driven, html);
   const std::string dom = dump_dom(driven);
   EXPECT_EQ(attribute(body_tag(dom), "data-status"), "ready");
   EXPECT_EQ(attribute(body_tag(dom), "data-test"), "passed");
@@ -216,13 +219,13 @@ TEST(ReportBrowser, ViewerAndTableRespondToClicksKeysAndControls) {
 TEST(ReportBrowser, BrokenPageDataSetsTheErrorMarker) {
   if (browser().empty()) GTEST_SKIP() << "no Chromium installed (apt-get install chromium)";
   const fs::path page = make_report("browser_broken");
-  std::string html = test::read_text(page);
+  std::string html = testing::read_file(page);
   const std::string open = "<script type=\"application/json\" id=\"compare-data\">";
   const size_t at = html.find(open);
   ASSERT_NE(at, std::string::npos);
   html.insert(at + open.size(), "{broken");
   const fs::path broken = page.parent_path() / "broken.html";
-  test::write_text(broken, html);
+  testing::write_file(broken, html);
   const std::string dom = dump_dom(broken);
   EXPECT_EQ(attribute(body_tag(dom), "data-status"), "error");
   const std::string box = element_tag(dom, "script-error");
@@ -239,8 +242,8 @@ TEST(ReportBrowser, ThousandsOfFramesLoadWithLazyThumbnails) {
     write_png(dir / "ref" / frame_name(f), img);
     write_png(dir / "new" / frame_name(f), f % 100 == 7 ? flat_image(16, 9, uint8_t(f % 200 + 20)) : img);
   }
-  const CommandResult r = run_command(std::string(SPUME_BINARY) + " compare --quiet '" + (dir / "ref").string() + "' '" +
-                                      (dir / "new").string() + "' --out '" + (dir / "out").string() + "' 2>&1");
+  const CommandResult r = run_spume("compare --quiet '" + (dir / "ref").string() + "' '" + (dir / "new").string() +
+                                     "' --out '" + (dir / "out").string() + "'");
   ASSERT_EQ(r.status, 1) << r.output;
   const auto start = std::chrono::steady_clock::now();
   const std::string dom = dump_dom(dir / "out" / "report.html");
@@ -251,7 +254,7 @@ TEST(ReportBrowser, ThousandsOfFramesLoadWithLazyThumbnails) {
   for (size_t i = 0; i < 12; ++i) EXPECT_EQ(rows[i].verdict, "fail") << i;  // frames 7, 107, ..., 1107
   EXPECT_EQ(rows[12].verdict, "identical");
   // Every thumbnail waits until it is scrolled near: 2 a frame, 3 for a failing one.
-  const std::string html = test::read_text(dir / "out" / "report.html");
+  const std::string html = testing::read_file(dir / "out" / "report.html");
   size_t lazy = 0;
   for (size_t p = 0; (p = html.find("<img loading=\"lazy\"", p)) != std::string::npos; ++p) ++lazy;
   EXPECT_EQ(lazy, size_t(2 * n + 12));

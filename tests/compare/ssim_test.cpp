@@ -15,12 +15,12 @@
 namespace spume {
 namespace {
 
-using test::flat_image;
+using testing::flat_image;
 
 const double C1 = (0.01 * 255) * (0.01 * 255), C2 = (0.03 * 255) * (0.03 * 255);
 
 TEST(Ssim, IdenticalImagesGiveExactlyOne) {
-  const ImageRGB8 img = test::random_image(40, 30, 11);
+  const ImageRGB8 img = testing::random_image(40, 30, 11);
   const SsimResult r = ssim_rgb(img, img);
   ASSERT_TRUE(r.defined);
   EXPECT_EQ(r.mean, 1.0);
@@ -48,7 +48,7 @@ TEST(Ssim, OnePixelInAFlatImageFromTheWindowWeights) {
   // There mu_x = v, mu_y = v + w d, sigma_x = 0, sigma_y^2 = w (1 - w) d^2, sigma_xy = 0.
   const double v = 100, d = 50;
   const ImageRGB8 a = flat_image(21, 21, 100);
-  const ImageRGB8 b = test::with_change(a, 10, 10, 0, 50);
+  const ImageRGB8 b = testing::with_change(a, 10, 10, 0, 50);
   double weights[11][11], total = 0;
   for (int i = 0; i < 11; ++i)
     for (int j = 0; j < 11; ++j) total += weights[i][j] = std::exp(-((i - 5) * (i - 5) + (j - 5) * (j - 5)) / (2 * 1.5 * 1.5));
@@ -96,7 +96,7 @@ double direct_ssim(const ImageRGB8& a, const ImageRGB8& b, int c) {
 
 TEST(Ssim, MatchesTheDefinitionEvaluatedDirectly) {
   // 90 rows: output rows cross the 32-row bands the implementation works in.
-  const ImageRGB8 a = test::random_image(37, 90, 21);
+  const ImageRGB8 a = testing::random_image(37, 90, 21);
   ImageRGB8 b = a;
   for (size_t i = 0; i < b.rgb.size(); i += 5) b.rgb[i] = uint8_t(std::min(255, b.rgb[i] + int(i % 40)));
   const SsimResult r = ssim_rgb(a, b);
@@ -112,7 +112,7 @@ TEST(Ssim, UndefinedBelowTheWindowAndSizesMustMatch) {
 }
 
 TEST(Ssim, SameBitsForAnyThreadCount) {
-  const ImageRGB8 a = test::random_image(301, 157, 1), b = test::random_image(301, 157, 2);
+  const ImageRGB8 a = testing::random_image(301, 157, 1), b = testing::random_image(301, 157, 2);
   set_thread_count(1);
   const SsimResult one = ssim_rgb(a, b);
   set_thread_count(2);

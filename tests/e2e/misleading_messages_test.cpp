@@ -10,8 +10,9 @@
 #include <fstream>
 #include <string>
 
-#include "tests/sim/run_command.h"
-#include "tests/sim/test_fluids.h"
+#include "tests/support/run_spume.h"
+#include "tests/support/temp_dir.h"
+#include "tests/support/test_fluids.h"
 #include "sim/io/bgeo.h"
 #include "sim/io/io_bytes.h"
 
@@ -20,9 +21,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-CommandResult run_spume(const std::string& arguments) {
-  return run_command(std::string(SPUME_BINARY) + " " + arguments + " 2>&1");
-}
+using testing::CommandResult;
+using testing::run_spume;
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
@@ -31,19 +31,10 @@ bool contains(const std::string& text, const std::string& part) { return text.fi
 class Messages : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir = fs::temp_directory_path() / ("spume_messages_" + std::to_string(::getpid()) + "_" +
-                                       ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir);
     fs::create_directories(dir / "cache");
-    for (int k = 1; k <= 4; ++k) {
-      const auto block = testing::lattice(Vec3f(0, 0, 0), Vec3f(0.16f, 0.16f, 0.16f), 0.04f);
-      std::vector<Vec3f> x, v;
-      for (const Vec3f& p : block) {
-        x.push_back(p + Vec3f(0.04f * k, 0, 0)), v.push_back(Vec3f(2, 1, 0));
-        x.push_back(p + Vec3f(0.5f - 0.04f * k, 0, 0)), v.push_back(Vec3f(-2, 1, 0));
-      }
-      write_bgeo(dir / "cache" / ("fluid_" + std::to_string(k) + ".bgeo"), testing::frame_of(k, 0, x, v));
-    }
+    for (int k = 1; k <= 4; ++k)
+      write_bgeo(dir / "cache" / ("fluid_" + std::to_string(k) + ".bgeo"),
+                 testing::blocks_closing_in(k, 0.16f, 0.5f, Vec3f(2, 1, 0)));
     std::ofstream(dir / "scene.json") << R"({
       "name": "blocks",
       "fluid": {"files": "cache/fluid_%d.bgeo", "radius": 0.02},
@@ -52,14 +43,14 @@ class Messages : public ::testing::Test {
       "render": {"resolution": [64, 36], "camera": {"position": [0.25, 0.5, 1.2], "target": [0.25, 0.1, 0.1]}}
     })";
   }
-  void TearDown() override { fs::remove_all(dir); }
 
   std::string args(const std::string& more = "") const {
     return (dir / "scene.json").string() + " --out " + (dir / "out").string() + " " + more;
   }
   fs::path out(const std::string& relative) const { return dir / "out/blocks" / relative; }
 
-  fs::path dir;
+  const testing::TempDir temp;
+  const fs::path& dir = temp.path;
 };
 
 // Case 2. A radius 1000 times too small (mm taken for m): the particles' spacing, 0.04 m, is far beyond
@@ -183,7 +174,7 @@ TEST_F(Messages, AGzipOfZerosFailsOnItsMagicWithBoundedMemory) {
   const fs::path zeros = dir / "zeros.bgeo.gz";
   write_gzip_of_zeros(zeros, "", 80);
   ASSERT_LT(fs::file_size(zeros), uint64_t(64) << 20);  // level-1 deflate of zeros: about 230:1
-  const CommandResult r = run_command("ulimit -v 1572864; " + std::string(SPUME_BINARY) + " info " + zeros.string() + " 2>&1");
+  const CommandResult r = run_spume("info " + zeros.string(), {.before = "ulimit -v 1572864"});
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_TRUE(contains(r.output, "not a BGEO file: first bytes are 0 0 0 0 0")) << r.output;
   EXPECT_LT(children_peak_mib(), 300.0);
@@ -197,7 +188,7 @@ TEST_F(Messages, AGzipOfZerosFailsOnItsMagicWithBoundedMemory) {
   const std::string plain = io::gunzip(io::read_file_bytes(valid), valid.string());
   const fs::path padded = dir / "padded.bgeo.gz";
   write_gzip_of_zeros(padded, plain, 80);
-  const CommandResult p = run_command("ulimit -v 1572864; " + std::string(SPUME_BINARY) + " info " + padded.string() + " 2>&1");
+  const CommandResult p = run_spume("info " + padded.string(), {.before = "ulimit -v 1572864"});
   EXPECT_EQ(p.status, 1) << p.output;
   EXPECT_TRUE(contains(p.output, "unexpected bytes after the end marker at offset " + std::to_string(plain.size())))
       << p.output;

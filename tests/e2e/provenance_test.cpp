@@ -5,6 +5,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <thread>
@@ -13,17 +15,19 @@
 #include "render/image/png_io.h"
 #include "sim/io/bgeo.h"
 #include "sim/io/stage_record.h"
-#include "tests/sim/run_command.h"
-#include "tests/sim/test_fluids.h"
+#include "tests/support/files.h"
+#include "tests/support/run_spume.h"
+#include "tests/support/temp_dir.h"
+#include "tests/support/test_fluids.h"
+#include "tests/support/written_files.h"
 
 namespace spume {
 namespace {
 
 namespace fs = std::filesystem;
 
-CommandResult run_spume(const std::string& arguments) {
-  return run_command(std::string(SPUME_BINARY) + " " + arguments + " 2>&1");
-}
+using testing::CommandResult;
+using testing::run_spume;
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
@@ -32,9 +36,6 @@ bool contains(const std::string& text, const std::string& part) { return text.fi
 class Provenance : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir = fs::temp_directory_path() / ("spume_e2e_" + std::to_string(::getpid()) + "_" +
-                                       ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir);
     fs::create_directories(dir / "cache");
     for (int k = 1; k <= 8; ++k) write_frame(k, 2.0f);
     std::ofstream(dir / "scene.json") << R"({
@@ -45,17 +46,10 @@ class Provenance : public ::testing::Test {
       "render": {"resolution": [64, 36], "camera": {"position": [0.25, 0.5, 1.2], "target": [0.25, 0.1, 0.1]}}
     })";
   }
-  void TearDown() override { fs::remove_all(dir); }
 
   // Frame k: the blocks 0.04 m closer at each frame, moving at `speed` m/s.
   void write_frame(int k, float speed) {
-    const auto block = testing::lattice(Vec3f(0, 0, 0), Vec3f(0.16f, 0.16f, 0.16f), 0.04f);
-    std::vector<Vec3f> x, v;
-    for (const Vec3f& p : block) {
-      x.push_back(p + Vec3f(0.04f * k, 0, 0)), v.push_back(Vec3f(speed, 1, 0));
-      x.push_back(p + Vec3f(0.5f - 0.04f * k, 0, 0)), v.push_back(Vec3f(-speed, 1, 0));
-    }
-    write_bgeo(frame_file(k), testing::frame_of(k, 0, x, v));
+    write_bgeo(frame_file(k), testing::blocks_closing_in(k, 0.16f, 0.5f, Vec3f(speed, 1, 0)));
   }
   fs::path frame_file(int k) const { return dir / "cache" / ("fluid_" + std::to_string(k) + ".bgeo"); }
   std::string args(const std::string& more = "") const {
@@ -68,25 +62,39 @@ class Provenance : public ::testing::Test {
     return out(name);
   }
 
-  fs::path dir;
+  const testing::TempDir temp;
+  const fs::path& dir = temp.path;
 };
 
 TEST_F(Provenance, ReExportedInputFilesAreSimulatedAndRenderedAgain) {
   CommandResult r = run_spume("run " + args());
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_TRUE(contains(r.output, "8 frames written")) << r.output;
+  testing::mark_files(out("diffuse"));
+  const std::string record = testing::read_file(out("diffuse/record.json"));
   r = run_spume("run " + args());
   ASSERT_EQ(r.status, 0) << r.output;
-  EXPECT_TRUE(contains(r.output, "diffuse simulation     skipped")) << r.output;
+  // The diffuse stage was skipped: not one of its files was written again.
+  EXPECT_EQ(testing::written_since_mark(out("diffuse")), std::vector<std::string>{});
+  EXPECT_EQ(testing::read_file(out("diffuse/record.json")), record);
   EXPECT_TRUE(contains(r.output, "0 frames written, 8 current on disk")) << r.output;
 
-  // Frames 5-8 re-exported (faster flow), same names: the diffuse stage runs again and says why,
-  // and the frames are drawn again.
-  std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  for (int k = 5; k <= 8; ++k) write_frame(k, 3.0f);
+  // Frames 5-8 re-exported (faster flow), same names, a second later than the first export (set
+  // explicitly: a rewrite within the clock's resolution could keep the time): the diffuse stage runs
+  // again and says why, and the frames are drawn again.
+  for (int k = 5; k <= 8; ++k) {
+    const fs::file_time_type exported = fs::last_write_time(frame_file(k));
+    write_frame(k, 3.0f);
+    fs::last_write_time(frame_file(k), exported + std::chrono::seconds(1));
+  }
   r = run_spume("run " + args());
   ASSERT_EQ(r.status, 0) << r.output;
-  EXPECT_TRUE(contains(r.output, "diffuse simulation     ran")) << r.output;
+  // The diffuse stage ran: its record was written again and names the re-exported files.
+  const std::vector<std::string> rewritten = testing::written_since_mark(out("diffuse"));
+  EXPECT_NE(std::find(rewritten.begin(), rewritten.end(), "record.json"), rewritten.end());
+  const std::optional<StageRecord> made = read_stage_record(out("diffuse"));
+  ASSERT_TRUE(made);
+  for (int k = 5; k <= 8; ++k) EXPECT_EQ(made->frame_inputs.at(k), file_identity(frame_file(k))) << k;
   EXPECT_TRUE(contains(r.output, "the input file of frame 5 changed")) << r.output;
   EXPECT_FALSE(contains(r.output, "0 frames written")) << r.output;
 }
@@ -141,12 +149,16 @@ TEST_F(Provenance, ASecondWriterWaitsForTheFolder) {
   const fs::path log = dir / "render.log";
   const std::string command = std::string(SPUME_BINARY) + " render " + args() + " > " + log.string() + " 2>&1";
   std::thread render([&] { std::system(command.c_str()); });
+  // Until the render says it waits (at most a minute, on a busy machine), and 1.5 s more.
+  const auto start = std::chrono::steady_clock::now();
+  while (!contains(testing::read_file(log), "waiting for the test") &&
+         std::chrono::steady_clock::now() - start < std::chrono::seconds(60))
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));
   EXPECT_FALSE(fs::exists(png(1)));  // still waiting
   held.reset();
   render.join();
-  std::ifstream in(log);
-  const std::string output((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string output = testing::read_file(log);
   EXPECT_TRUE(contains(output, "waiting for the test")) << output;
   EXPECT_TRUE(contains(output, "8 frames written")) << output;
 }

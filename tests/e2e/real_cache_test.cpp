@@ -7,39 +7,23 @@
 #include <fstream>
 #include <sstream>
 
-#include "tests/sim/run_command.h"
+#include "tests/support/csv.h"
+#include "tests/support/files.h"
+#include "tests/support/run_spume.h"
+#include "tests/support/temp_dir.h"
 
 namespace spume {
 namespace {
 
 namespace fs = std::filesystem;
 
-CommandResult run_spume(const std::string& arguments) {
-  return run_command(std::string(SPUME_BINARY) + " " + arguments + " 2>&1");
-}
+using testing::CommandResult;
+using testing::run_spume;
 
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Sum of two columns of stats.csv (generated, removed) over every frame.
+// Sums of two columns of stats.csv (generated, removed) over every frame.
 std::pair<long, long> emitted_and_removed(const fs::path& stats) {
-  std::ifstream in(stats);
-  std::string line;
-  std::getline(in, line);
-  long emitted = 0, removed = 0;
-  while (std::getline(in, line)) {
-    std::stringstream row(line);
-    std::string cell;
-    for (int column = 0; std::getline(row, cell, ','); ++column) {
-      if (column == 6) emitted += std::stol(cell);
-      if (column == 8) removed += std::stol(cell);
-    }
-  }
-  return {emitted, removed};
+  const auto rows = testing::read_csv(stats);
+  return {long(testing::column_sum(rows, "generated")), long(testing::column_sum(rows, "removed"))};
 }
 
 // A 1 m water column at one end of a 4 m tank (r = 0.04 m: 720 particles), 1.6 s at 25 fps: the
@@ -49,9 +33,8 @@ constexpr const char* kTank = R"({"type": "tank", "min": [0, 0, 0], "max": [4, 1
 class RealCache : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir = fs::temp_directory_path() / ("spume_real_cache_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    temp = std::make_unique<testing::TempDir>("RealCache");
+    dir = temp->path;
     std::ofstream(dir / "dam.json") << R"({
       "name": "dam",
       "fluid": {"source": "solver", "radius": 0.04, "fps": 25, "frames": [0, 40],
@@ -61,13 +44,15 @@ class RealCache : public ::testing::Test {
     })";
     solved = run_spume("simulate " + (dir / "dam.json").string() + " --out " + (dir / "out").string());
   }
-  static void TearDownTestSuite() { fs::remove_all(dir); }
+  static void TearDownTestSuite() { temp.reset(); }
   static std::string bgeo_pattern() { return (dir / "out/dam/fluid_bgeo/fluid_%04d.bgeo").string(); }
 
+  static std::unique_ptr<testing::TempDir> temp;
   static fs::path dir;
   static CommandResult solved;
 };
 
+std::unique_ptr<testing::TempDir> RealCache::temp;
 fs::path RealCache::dir;
 CommandResult RealCache::solved;
 
@@ -93,7 +78,7 @@ TEST_F(RealCache, WithTheTankGivenItMatchesTheSolverScenesDiffuseStage) {
   for (int k = 0; k <= 40; ++k) {
     char name[32];
     std::snprintf(name, sizeof name, "diffuse/diffuse_%04d.spd", k);
-    const std::string a = read_file(dir / "out/dam" / name), b = read_file(dir / "out/post" / name);
+    const std::string a = testing::read_file(dir / "out/dam" / name), b = testing::read_file(dir / "out/post" / name);
     ASSERT_FALSE(a.empty()) << name;
     EXPECT_TRUE(a == b) << name << " differs";
     compared += a.size() > 100;

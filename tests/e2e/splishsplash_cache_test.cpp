@@ -8,7 +8,8 @@
 #include "sim/core/frames.h"
 #include "sim/io/particle_file.h"
 #include "sim/io/spume_cache.h"
-#include "tests/sim/run_command.h"
+#include "tests/support/run_spume.h"
+#include "tests/support/temp_dir.h"
 
 namespace spume {
 namespace {
@@ -28,15 +29,15 @@ class SplishsplashCache : public ::testing::TestWithParam<Cache> {};
 TEST_P(SplishsplashCache, WhatIsEmittedStaysInTheTankAndBubblesSitInWater) {
   const Cache& c = GetParam();
   const fs::path data = fs::path(SPUME_TEST_DATA_DIR) / c.folder;
-  const fs::path out = fs::temp_directory_path() / ("spume_sph_" + std::to_string(::getpid()) + "_" + c.folder);
-  fs::remove_all(out);
+  const testing::TempDir temp;
+  const fs::path& out = temp.path;
   char tank[256];
   std::snprintf(tank, sizeof tank, "%g,%g,%g,%g,%g,%g", c.tank_min.x(), c.tank_min.y(), c.tank_min.z(),
                 c.tank_max.x(), c.tank_max.y(), c.tank_max.z());
-  const CommandResult r = run_command(std::string(SPUME_BINARY) + " simulate --fluid '" +
-                                      (data / "ParticleData_Fluid_%d.bgeo").string() + "' --radius " +
-                                      std::to_string(c.radius) + " --fps " + std::to_string(c.fps) + " --tank " +
-                                      tank + " --out " + out.string() + " 2>&1");
+  const testing::CommandResult r =
+      testing::run_spume("simulate --fluid '" + (data / "ParticleData_Fluid_%d.bgeo").string() + "' --radius " +
+                         std::to_string(c.radius) + " --fps " + std::to_string(c.fps) + " --tank " + tank + " --out " +
+                         out.string());
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;  // radius and domain fit the cache
 
@@ -64,7 +65,6 @@ TEST_P(SplishsplashCache, WhatIsEmittedStaysInTheTankAndBubblesSitInWater) {
   }
   ASSERT_GT(bubbles, 10u);
   EXPECT_LE(dry_bubbles * 50, bubbles) << dry_bubbles << " of " << bubbles << " bubbles have no fluid within 4r";
-  fs::remove_all(out);
 }
 
 INSTANTIATE_TEST_SUITE_P(

@@ -9,27 +9,23 @@
 
 #include <nlohmann/json.hpp>
 
-#include "tests/sim/container_sequences.h"
-#include "tests/sim/run_command.h"
+#include "tests/support/container_sequences.h"
+#include "tests/support/run_spume.h"
+#include "tests/support/temp_dir.h"
 
 namespace spume {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::CommandResult;
 
 class TankOption : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir = fs::temp_directory_path() / ("spume_tank_option_" + std::to_string(::getpid()) + "_" +
-                                       ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir);
-  }
-  void TearDown() override { fs::remove_all(dir); }
 
   // `simulate --fluid PATTERN --radius r` plus `options`; stderr with stdout.
   CommandResult simulate(const std::string& pattern, const std::string& options) const {
-    return run_command(std::string(SPUME_BINARY) + " simulate --fluid '" + pattern + "' --radius 0.01 --out " +
-                       (dir / "out").string() + " " + options + " 2>&1");
+    return testing::run_spume("simulate --fluid '" + pattern + "' --radius 0.01 --out " + (dir / "out").string() + " " +
+                              options);
   }
   static std::string line_with(const std::string& output, const std::string& text) {
     const size_t at = output.find(text);
@@ -37,7 +33,8 @@ class TankOption : public ::testing::Test {
     const size_t begin = output.rfind('\n', at) + 1;
     return output.substr(begin, output.find('\n', at) - begin);
   }
-  fs::path dir;
+  const testing::TempDir temp;
+  const fs::path& dir = temp.path;
 };
 
 TEST_F(TankOption, ABlockFallingFreelyGetsNoWalls) {

@@ -9,25 +9,18 @@
 #include "sim/core/error.h"
 #include "sim/core/frame_spec.h"
 #include "render/app/farm/farm_plan.h"
+#include "tests/support/error_of.h"
 
 namespace spume::farm {
 namespace {
 
+using testing::error_of;
 using Frames = std::vector<int>;
 
 Frames range(int a, int b, int step = 1) {
   Frames f;
   for (int i = a; i <= b; i += step) f.push_back(i);
   return f;
-}
-
-std::string error_of(const std::function<void()>& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
 }
 
 TEST(FormatFrameSpec, HandWorkedSets) {

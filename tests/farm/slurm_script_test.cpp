@@ -12,11 +12,15 @@
 
 #include "sim/core/error.h"
 #include "render/app/farm/slurm_script.h"
+#include "tests/support/error_of.h"
+#include "tests/support/run_command.h"
+#include "tests/support/temp_dir.h"
 
 namespace spume::farm {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::error_of;
 
 SlurmFarm example() {
   SlurmFarm farm;
@@ -33,15 +37,9 @@ bool contains(const std::string& text, const std::string& part) { return text.fi
 
 // Runs `script` with bash (environment assignments first) and returns its stdout.
 std::string run_bash(const std::string& script, const std::string& environment = "") {
-  const fs::path file = fs::temp_directory_path() / ("spume_slurm_script_" + std::to_string(::getpid()) + ".sh");
-  std::ofstream(file) << script;
-  FILE* pipe = popen((environment + " bash " + file.string() + " 2>&1").c_str(), "r");
-  std::string output;
-  std::array<char, 4096> buffer;
-  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) output.append(buffer.data(), n);
-  pclose(pipe);
-  fs::remove(file);
-  return output;
+  const testing::TempDir temp("slurm_script");
+  const fs::path file = temp.write("script.sh", script);
+  return testing::run_command(environment + " bash " + file.string() + " 2>&1").output;
 }
 
 TEST(SlurmScripts, ArrayHasOneTaskPerChunk) {
@@ -114,12 +112,11 @@ TEST(SlurmScripts, SubmitScriptPassesQuotedPathsToSbatch) {
   farm.work_dir = "/tmp/work dir";
   const SlurmScripts s = make_slurm_scripts(farm);
   // A fake sbatch prints its arguments one per line and a job id.
-  const fs::path bin = fs::temp_directory_path() / ("spume_fake_sbatch_" + std::to_string(::getpid()));
-  fs::create_directories(bin);
+  const testing::TempDir fake_bin;
+  const fs::path& bin = fake_bin.path;
   std::ofstream(bin / "sbatch") << "#!/bin/bash\nprintf '<%s>\\n' \"$@\" >&2\necho 42\n";
   fs::permissions(bin / "sbatch", fs::perms::owner_all);
   const std::string out = run_bash(s.submit, "PATH='" + bin.string() + ":'\"$PATH\"");
-  fs::remove_all(bin);
   fs::remove_all(farm.farm_dir);
   EXPECT_TRUE(contains(out, "<--chdir=/tmp/work dir>\n")) << out;
   EXPECT_TRUE(contains(out, "<--output=/tmp/spume farm's test/logs/simulate_%j.log>\n")) << out;
@@ -133,37 +130,28 @@ TEST(SlurmScripts, SubmitScriptPassesQuotedPathsToSbatch) {
 TEST(SlurmScripts, ScriptsAreValidBash) {
   const SlurmScripts s = make_slurm_scripts(example());
   for (const std::string& script : {s.simulate, s.render, s.submit}) {
-    const fs::path file = fs::temp_directory_path() / ("spume_syntax_" + std::to_string(::getpid()) + ".sh");
-    std::ofstream(file) << script;
-    EXPECT_EQ(std::system(("bash -n " + file.string()).c_str()), 0) << script;
-    fs::remove(file);
+    const testing::TempDir temp;
+    const fs::path file = temp.write("script.sh", script);
+    EXPECT_EQ(testing::run_command("bash -n " + file.string()).status, 0) << script;
   }
-}
-
-std::string error_of(const SlurmFarm& farm) {
-  try {
-    make_slurm_scripts(farm);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
 }
 
 TEST(SlurmScripts, BadValuesAreErrorsNamingTheOption) {
   SlurmFarm farm = example();
+  auto error = [&] { return error_of([&] { make_slurm_scripts(farm); }); };
   farm.partition = "gpu\n#SBATCH --x";
-  std::string e = error_of(farm);
+  std::string e = error();
   EXPECT_TRUE(contains(e, "--partition")) << e;
   EXPECT_TRUE(contains(e, "letters, digits")) << e;
   farm = example();
   farm.sbatch_options = {"time=1:00"};
-  e = error_of(farm);
+  e = error();
   EXPECT_TRUE(contains(e, "--sbatch") && contains(e, "time=1:00")) << e;
   farm.sbatch_options = {"--time=1\n--mem=1G"};
-  EXPECT_TRUE(contains(error_of(farm), "one option per --sbatch")) << error_of(farm);
+  EXPECT_TRUE(contains(error(), "one option per --sbatch")) << error();
   farm = example();
   farm.chunks.clear();
-  EXPECT_TRUE(contains(error_of(farm), "no frames")) << error_of(farm);
+  EXPECT_TRUE(contains(error(), "no frames")) << error();
 }
 
 TEST(SlurmScripts, JobNamesKeepToSafeCharacters) {

@@ -10,20 +10,21 @@
 #include <fstream>
 #include <iterator>
 
+#include "tests/support/files.h"
+#include "tests/support/run_command.h"
+#include "tests/support/temp_dir.h"
+
 namespace spume {
 namespace {
 
 // Runs the child program (tests/render/gl_child) with LP_NUM_THREADS set; its output, or "" on failure.
 std::string run_child(const std::string& lp_threads) {
-  const auto path =
-      std::filesystem::temp_directory_path() / ("spume_gl_child_" + std::to_string(getpid()) + "_" + lp_threads);
+  const testing::TempDir temp("gl_child_" + lp_threads);
+  const auto path = temp / "child.bin";
   const std::string cmd = "LP_NUM_THREADS=" + lp_threads + " " + SPUME_GL_CHILD + " " + path.string() +
                           " > /dev/null 2>&1";
-  if (std::system(cmd.c_str()) != 0) return {};
-  std::ifstream f(path, std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-  std::filesystem::remove(path);
-  return bytes;
+  if (testing::run_command(cmd).status != 0) return {};
+  return testing::read_file(path);
 }
 
 TEST(GlDeterminism, SameBytesForAnyLlvmpipeThreadCount) {

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "render/stage/render_stats.h"
+#include "tests/support/temp_dir.h"
 
 namespace spume {
 namespace {
@@ -22,13 +23,8 @@ std::string read_text(const std::filesystem::path& p) {
 
 class RenderStats : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() / ("spume_render_stats_" + std::to_string(::getpid()));
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-  std::filesystem::path dir_;
+  const testing::TempDir temp_;
+  const std::filesystem::path& dir_ = temp_.path;
 };
 
 constexpr const char* kHeader =

@@ -9,6 +9,7 @@
 #include "sim/core/error.h"
 #include "render/app/report/gnuplot_figure.h"
 #include "render/app/report/report_table.h"
+#include "tests/support/temp_dir.h"
 
 namespace spume::report {
 namespace {
@@ -59,8 +60,8 @@ TEST(ReportWriter, GnuplotScriptQuotesTitlesAndDropsPointsALogAxisCannotShow) {
 }
 
 TEST(ReportWriter, DrawsAPngWithGnuplot) {
-  const auto dir = std::filesystem::temp_directory_path() / ("spume_report_writer_" + std::to_string(getpid()));
-  std::filesystem::create_directories(dir);
+  const testing::TempDir temp;
+  const std::filesystem::path& dir = temp.path;
   Figure f;
   f.panels = {Panel{"t", "x", "y", false, false, false, {Series{"s", {{0, 0}, {1, 1}}, true}}}};
   draw_figure(f, dir / "plot.png", dir / "plot.gp");
@@ -73,7 +74,6 @@ TEST(ReportWriter, DrawsAPngWithGnuplot) {
   int files = 0;
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++files;
   EXPECT_EQ(files, 2);
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

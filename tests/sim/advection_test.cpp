@@ -7,7 +7,7 @@
 
 #include "sim/diffuse/advection.h"
 #include "sim/diffuse/fluid_sampling.h"
-#include "tests/sim/test_fluids.h"
+#include "tests/support/test_fluids.h"
 
 namespace spume {
 namespace {

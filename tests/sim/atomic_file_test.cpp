@@ -8,6 +8,7 @@
 
 #include "sim/core/atomic_file.h"
 #include "sim/core/error.h"
+#include "tests/support/temp_dir.h"
 
 namespace spume {
 namespace {
@@ -15,8 +16,8 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(AtomicFile, TemporaryNameCarriesHostAndPid) {
-  const fs::path dir = fs::temp_directory_path() / ("spume_atomic_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
+  const testing::TempDir temp;
+  const std::filesystem::path& dir = temp.path;
   char host[256] = {};
   ASSERT_EQ(::gethostname(host, sizeof host - 1), 0);
   const fs::path target = dir / "frame.png";
@@ -36,7 +37,6 @@ TEST(AtomicFile, TemporaryNameCarriesHostAndPid) {
   EXPECT_THROW(write_file_atomically(target, [](std::ostream&) { fail("writer failed"); }), Error);
   EXPECT_FALSE(fs::exists(expected_tmp));  // removed on failure; the old file stays
   EXPECT_TRUE(fs::exists(target));
-  fs::remove_all(dir);
 }
 
 }  // namespace

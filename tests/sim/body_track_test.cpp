@@ -11,18 +11,12 @@
 #include "sim/fluid/solver.h"
 #include "sim/pipeline/body_track_file.h"
 #include "sim/pipeline/simulate_scene.h"
+#include "tests/support/temp_dir.h"
 
 namespace spume {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("spume_bodies_" + std::to_string(::getpid()) + "_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 BodyPose pose(uint32_t solid, Vec3f position, Quatf orientation, Vec3f velocity = Vec3f::Zero()) {
   BodyPose p;
@@ -55,7 +49,8 @@ TEST(BodyTrack, InterpolatesCentresLinearlyAndOrientationsAlongTheShortArc) {
 }
 
 TEST(BodyTrackFile, RoundTripsEveryFloatExactly) {
-  const fs::path dir = scratch("roundtrip");
+  const testing::TempDir temp;
+  const fs::path& dir = temp.path;
   BodyTrack track;
   track.fps = 24.0;
   track.first_frame = 0;
@@ -79,11 +74,11 @@ TEST(BodyTrackFile, RoundTripsEveryFloatExactly) {
       EXPECT_EQ(a.angular_velocity, b.angular_velocity);
     }
   }
-  fs::remove_all(dir);
 }
 
 void expect_read_error(const std::string& text, const std::string& expected) {
-  const fs::path dir = scratch("bad");
+  const testing::TempDir temp;
+  const fs::path& dir = temp.path;
   std::ofstream(dir / "bodies.csv") << text;
   try {
     read_body_track(dir / "bodies.csv", 30.0);
@@ -92,7 +87,6 @@ void expect_read_error(const std::string& text, const std::string& expected) {
     EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("bodies.csv"), std::string::npos) << e.what();
   }
-  fs::remove_all(dir);
 }
 
 TEST(BodyTrackFile, MalformedFilesAreRefusedNamingTheLine) {
@@ -109,7 +103,8 @@ TEST(BodyTrackFile, MalformedFilesAreRefusedNamingTheLine) {
 // A heavy cube dropped into a shallow pool: the stage's track holds the solver's poses at every
 // frame time, and the cube falls.
 TEST(BodyTrackStage, FluidStageWritesTheSolversPosesPerFrame) {
-  const fs::path out = scratch("stage");
+  const testing::TempDir temp;
+  const fs::path& out = temp.path;
   const Json json = Json::parse(R"({
     "name": "drop",
     "fluid": {"source": "solver", "radius": 0.025, "fps": 20, "frames": [0, 3],
@@ -139,7 +134,6 @@ TEST(BodyTrackStage, FluidStageWritesTheSolversPosesPerFrame) {
   const SolidSet at_end = solids_at_time(scene.solids, track, 3 / 20.0);
   // The box is stored as min/max about its centre, so the centre comes back to float rounding.
   EXPECT_LT((at_end.solids()[1].centre() - track.frames[3][0].position).norm(), 1e-6f);
-  fs::remove_all(out);
 }
 
 TEST(BodyTrackStage, DynamicSolidsWithAFileFluidAreRefused) {

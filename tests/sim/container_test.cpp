@@ -3,7 +3,7 @@
 // invented where the fluid touches nothing, stays at rest, or is pushed by a moving piston.
 #include <gtest/gtest.h>
 
-#include "tests/sim/container_sequences.h"
+#include "tests/support/container_sequences.h"
 #include "sim/scene/container.h"
 
 namespace spume {

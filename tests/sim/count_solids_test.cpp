@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "sim/diffuse/simulator.h"
-#include "tests/sim/test_fluids.h"
+#include "tests/support/test_fluids.h"
 
 namespace spume {
 namespace {

@@ -6,7 +6,7 @@
 
 #include "sim/core/rng.h"
 #include "sim/diffuse/emission.h"
-#include "tests/sim/test_fluids.h"
+#include "tests/support/test_fluids.h"
 
 namespace spume {
 namespace {

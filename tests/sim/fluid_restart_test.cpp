@@ -12,6 +12,7 @@
 #include "sim/core/error.h"
 #include "sim/core/parallel.h"
 #include "sim/fluid/solver.h"
+#include "tests/support/temp_dir.h"
 
 namespace spume {
 namespace {
@@ -66,22 +67,18 @@ Scene column(bool with_piston, bool warm_start) {
   return s;
 }
 
-fs::path temp_file(const std::string& name) {
-  return fs::temp_directory_path() / ("spume_restart_" + std::to_string(::getpid()) + "_" + name);
-}
-
 // Runs `setup` to t1, saves (through the file), restores into a fresh solver with `threads_after`
 // threads and runs both to t2; every frame in between must be the same bytes.
 void expect_continuation_identical(const Scene& setup, double t1, double t2, int threads_after) {
   set_thread_count(1);
   FluidSolver straight = setup.make();
   straight.advance_to(t1);
-  const fs::path file = temp_file("state.spr");
+  const testing::TempDir temp;
+  const fs::path file = temp / "state.spr";
   write_restart_state(file, straight.restart_state(7));
   set_thread_count(threads_after);
   FluidSolver resumed = setup.make();
   resumed.restore(read_restart_state(file));
-  fs::remove(file);
   EXPECT_EQ(resumed.time(), t1);
   for (int k = 1; k <= 4; ++k) {
     const double t = t1 + (t2 - t1) * k / 4.0;
@@ -136,7 +133,8 @@ TEST(FluidRestart, FileRoundTripsEveryField) {
   s.velocities = {Vec3f(4, 5, 6), Vec3f(-1, -2, -3), Vec3f(0, 0, 0)};
   s.density_warm = {0.5f, 0.25f, 0.125f};
   s.divergence_warm = {1, 2, 3};
-  const fs::path file = temp_file("roundtrip.spr");
+  const testing::TempDir temp;
+  const fs::path file = temp / "roundtrip.spr";
   write_restart_state(file, s);
   // Header 168 bytes, 3 x (4 + 12 + 12 + 4 + 4) bytes of particles, 4 bytes of CRC.
   EXPECT_EQ(fs::file_size(file), 168u + 3u * 36u + 4u);
@@ -170,7 +168,6 @@ TEST(FluidRestart, FileRoundTripsEveryField) {
   write_restart_state(file, s);
   EXPECT_EQ(fs::file_size(file), 168u + 3u * 28u + 4u);
   EXPECT_TRUE(read_restart_state(file).density_warm.empty());
-  fs::remove(file);
 }
 
 std::string error_reading(const fs::path& file) {
@@ -185,7 +182,8 @@ std::string error_reading(const fs::path& file) {
 TEST(FluidRestart, CorruptFilesAreRefusedNamingTheFile) {
   FluidSolver solver = column(false, false).make();
   solver.advance_to(0.01);
-  const fs::path file = temp_file("corrupt.spr");
+  const testing::TempDir temp;
+  const fs::path file = temp / "corrupt.spr";
   write_restart_state(file, solver.restart_state(1));
   std::string bytes;
   {

@@ -7,18 +7,12 @@
 #include "sim/core/error.h"
 #include "sim/scene/fluid_scene_reader.h"
 #include "sim/scene/solids_reader.h"
+#include "tests/support/error_of.h"
 
 namespace spume {
 namespace {
 
-std::string error_of(const std::function<void()>& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::error_of;
 
 TEST(FluidSceneReader, ReadsSolverKeysAndFallsBackToDefaults) {
   const ParamReader root = ParamReader::from_json(Json::parse(R"({

@@ -14,6 +14,8 @@
 #include "sim/core/parallel.h"
 #include "sim/pipeline/fluid_continuation.h"
 #include "sim/pipeline/fluid_stage.h"
+#include "tests/support/temp_dir.h"
+#include "tests/support/written_files.h"
 
 namespace spume {
 namespace {
@@ -64,15 +66,7 @@ std::map<std::string, std::string> folder(const fs::path& dir) {
 
 class FluidStageContinuation : public ::testing::Test {
  protected:
-  void SetUp() override {
-    root = fs::temp_directory_path() / ("spume_continue_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(root);
-  }
-  void TearDown() override {
-    set_thread_count(0);
-    fs::remove_all(root);
-  }
+  void TearDown() override { set_thread_count(0); }
   FluidStageSummary run(const SimScene& scene, const std::string& out, int last, int threads, bool quiet = true) {
     set_thread_count(threads);
     FluidStageOptions o;
@@ -89,13 +83,14 @@ class FluidStageContinuation : public ::testing::Test {
     EXPECT_EQ(first.frames, 6);
     EXPECT_EQ(first.continued_from, -1);
     EXPECT_TRUE(fs::is_regular_file(dir("parts") / "restart_0005.spr"));
-    const auto kept = fs::last_write_time(dir("parts") / "fluid_0003.spf");
+    testing::mark_files(dir("parts"));
 
     const FluidStageSummary second = run(scene, "parts", 10, 2);
     EXPECT_FALSE(second.reused);
     EXPECT_EQ(second.continued_from, 5);
     EXPECT_EQ(second.frames, 5);  // 6..10
-    EXPECT_EQ(fs::last_write_time(dir("parts") / "fluid_0003.spf"), kept);  // earlier frames are not rewritten
+    const std::vector<std::string> written = testing::written_since_mark(dir("parts"));
+    EXPECT_EQ(std::find(written.begin(), written.end(), "fluid_0003.spf"), written.end());  // earlier frames are not rewritten
     EXPECT_FALSE(fs::exists(dir("parts") / "restart_0005.spr"));  // only the last frame's state is kept
 
     run(scene, "whole", 10, 2);
@@ -109,7 +104,8 @@ class FluidStageContinuation : public ::testing::Test {
     EXPECT_EQ(parts.size(), whole.size());
   }
 
-  fs::path root;
+  const testing::TempDir temp;
+  const fs::path& root = temp.path;
 };
 
 TEST_F(FluidStageContinuation, ALongerRangeContinuesAndMatchesOneRunByteForByte) {

@@ -11,7 +11,8 @@
 
 #include "sim/io/fluid_survey.h"
 #include "sim/io/ply.h"
-#include "tests/sim/test_fluids.h"
+#include "tests/support/test_fluids.h"
+#include "tests/support/temp_dir.h"
 
 namespace spume {
 namespace {
@@ -49,14 +50,6 @@ TEST(SurveyPositions, MedianSpacingOfALattice) {
 
 class SurveyFiles : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir = fs::temp_directory_path() / ("spume_survey_" + std::to_string(::getpid()) + "_" +
-                                       ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  void TearDown() override { fs::remove_all(dir); }
-
   // Frame k: a 3 x 3 x 3 lattice (spacing 0.02) shifted by k * 0.1 along x; `empty` frames hold none.
   void write_frame(int k, bool empty = false, float shift = 0.1f) {
     FluidFrame f;
@@ -74,7 +67,8 @@ class SurveyFiles : public ::testing::Test {
   std::string pattern() const { return (dir / "p_%d.ply").string(); }
   fs::path keep() const { return dir / "fluid_survey.json"; }
 
-  fs::path dir;
+  const testing::TempDir temp;
+  const fs::path& dir = temp.path;
 };
 
 TEST_F(SurveyFiles, KeptEntriesAreReusedForUnchangedFiles) {

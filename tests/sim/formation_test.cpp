@@ -5,7 +5,7 @@
 
 #include "sim/diffuse/kernels.h"
 #include "sim/diffuse/potentials.h"
-#include "tests/sim/test_fluids.h"
+#include "tests/support/test_fluids.h"
 
 namespace spume {
 namespace {

@@ -10,13 +10,15 @@
 #include <numeric>
 
 #include "sim/core/error.h"
-#include "tests/sim/io_test_support.h"
+#include "tests/support/error_of.h"
+#include "tests/support/files.h"
+#include "tests/support/temp_dir.h"
 #include "sim/io/bgeo.h"
 #include "sim/io/io_bytes.h"
 
 namespace fs = std::filesystem;
 using namespace spume;
-using namespace spume::io_test;
+using namespace spume::testing;
 
 namespace {
 
@@ -148,7 +150,7 @@ TEST(Bgeo, FluidRoundTripIsGzipped) {
   f.masses = {0.008f, 0.008f, 0.009f};
   const fs::path p = dir.path / "out" / "fluid.bgeo";
   write_bgeo(p, f);
-  const std::string bytes = slurp(p);
+  const std::string bytes = read_file(p);
   ASSERT_GE(bytes.size(), 2u);
   EXPECT_EQ(uint8_t(bytes[0]), 0x1f);
   EXPECT_EQ(uint8_t(bytes[1]), 0x8b);
@@ -197,7 +199,7 @@ TEST(Bgeo, DiffuseRoundTrip) {
 
 TEST(Bgeo, TruncatedFilesGiveErrorsNamingTheFile) {
   TempDir dir;
-  const std::string raw = io::gunzip(slurp(kRealFrame), "test");
+  const std::string raw = io::gunzip(read_file(kRealFrame), "test");
   ASSERT_EQ(raw.size(), 1087016u);  // 102-byte header + 30192 * 36 + 00 FF
   for (size_t cut : {size_t(0), size_t(3), size_t(20), size_t(45), size_t(70), size_t(102), size_t(102 + 36 * 100 + 7),
                      raw.size() - 3, raw.size() - 1}) {
@@ -206,7 +208,7 @@ TEST(Bgeo, TruncatedFilesGiveErrorsNamingTheFile) {
     EXPECT_NE(msg.find(p.string()), std::string::npos) << cut << ": " << msg;
   }
   // Cutting the compressed stream instead.
-  const std::string gz = slurp(kRealFrame);
+  const std::string gz = read_file(kRealFrame);
   for (size_t cut : {size_t(1), size_t(10), gz.size() / 2, gz.size() - 4}) {
     const fs::path p = dir.write("gzcut_" + std::to_string(cut) + ".bgeo", gz.substr(0, cut));
     const std::string msg = error_of([&] { read_bgeo(p); });
@@ -219,7 +221,7 @@ TEST(Bgeo, TruncatedFilesGiveErrorsNamingTheFile) {
 
 TEST(Bgeo, CorruptBytesGiveClearErrors) {
   TempDir dir;
-  const std::string raw = io::gunzip(slurp(kRealFrame), "test");
+  const std::string raw = io::gunzip(read_file(kRealFrame), "test");
   auto with = [&](size_t offset, std::string_view bytes) {
     std::string s = raw;
     s.replace(offset, bytes.size(), bytes);

@@ -9,12 +9,14 @@
 #include <functional>
 
 #include "sim/core/error.h"
-#include "tests/sim/io_test_support.h"
+#include "tests/support/error_of.h"
+#include "tests/support/files.h"
+#include "tests/support/temp_dir.h"
 #include "sim/io/spume_cache.h"
 
 namespace fs = std::filesystem;
 using namespace spume;
-using namespace spume::io_test;
+using namespace spume::testing;
 
 namespace {
 
@@ -67,7 +69,7 @@ TEST(Cache, FluidRoundTripMatchesTheDocumentedLayout) {
   const FluidFrame f = sample_fluid();
   const fs::path p = dir.path / "f.spf";
   write_fluid_cache(p, f, 0.025f);
-  const std::string b = slurp(p);
+  const std::string b = read_file(p);
   // 40-byte header + 3 * (4 id + 12 position + 12 velocity + 4 mass) + 4 CRC.
   ASSERT_EQ(b.size(), 40u + 3 * 32 + 4);
   EXPECT_EQ(b.substr(0, 8), "SPUMEFL1");
@@ -115,7 +117,7 @@ TEST(Cache, DiffuseRoundTripMatchesTheDocumentedLayout) {
   const DiffuseFrame d = sample_diffuse();
   const fs::path p = dir.path / "sub" / "d.spd";
   write_diffuse_cache(p, d);
-  const std::string b = slurp(p);
+  const std::string b = read_file(p);
   ASSERT_EQ(b.size(), 56u + 4 * (8 + 12 + 12 + 4 + 1) + 4);
   EXPECT_EQ(b.substr(0, 8), "SPUMEDF1");
   EXPECT_EQ(at<int32_t>(b, 12), 3);
@@ -143,7 +145,7 @@ TEST(Cache, CorruptionIsDetected) {
   TempDir dir;
   const fs::path good = dir.path / "good.spd";
   write_diffuse_cache(good, sample_diffuse());
-  const std::string b = slurp(good);
+  const std::string b = read_file(good);
 
   std::string flipped = b;
   flipped[70] ^= 0x10;
@@ -176,14 +178,14 @@ TEST(Cache, HugeCountFailsBeforeAllocating) {
   TempDir dir;
   const fs::path good = dir.path / "good.spf";
   write_fluid_cache(good, sample_fluid(), 0.01f);
-  std::string b = slurp(good);
+  std::string b = read_file(good);
   put<uint64_t>(b, 28, uint64_t(1) << 60);
   const fs::path p = dir.write("huge.spf", b);
   const std::string msg = error_of([&] { read_fluid_cache(p); });
   EXPECT_NE(msg.find("does not fit the file size"), std::string::npos) << msg;
   EXPECT_NE(error_of([&] { peek_fluid_cache(p); }).find("does not fit"), std::string::npos);
 
-  std::string d = slurp([&] {
+  std::string d = read_file([&] {
     write_diffuse_cache(dir.path / "d.spd", sample_diffuse());
     return dir.path / "d.spd";
   }());
@@ -199,14 +201,14 @@ TEST(Cache, InvalidValuesBehindAValidCrcAreRejected) {
   TempDir dir;
   const fs::path good = dir.path / "good.spd";
   write_diffuse_cache(good, sample_diffuse());
-  std::string b = slurp(good);
+  std::string b = read_file(good);
   b[b.size() - 4 - 1] = 5;  // last particle's type
   const fs::path t = dir.write("type.spd", with_fixed_crc(b));
   const std::string msg = error_of([&] { read_diffuse_cache(t); });
   EXPECT_NE(msg.find("type 5"), std::string::npos) << msg;
   EXPECT_NE(msg.find(t.string()), std::string::npos);
 
-  std::string counts = slurp(good);
+  std::string counts = read_file(good);
   put<uint64_t>(counts, 32, 1);  // spray 1, foam 2: sums to 4 but disagrees with the data
   put<uint64_t>(counts, 40, 2);
   const fs::path c = dir.write("counts.spd", with_fixed_crc(counts));
@@ -214,14 +216,14 @@ TEST(Cache, InvalidValuesBehindAValidCrcAreRejected) {
 
   const fs::path fgood = dir.path / "good.spf";
   write_fluid_cache(fgood, sample_fluid(), 0.01f);
-  std::string f = slurp(fgood);
+  std::string f = read_file(fgood);
   put<float>(f, 40 + 12 + 12 + 4, std::numeric_limits<float>::infinity());  // particle 1 y
   const fs::path inf = dir.write("inf.spf", with_fixed_crc(f));
   const std::string inf_msg = error_of([&] { read_fluid_cache(inf); });
   EXPECT_NE(inf_msg.find("particle 1"), std::string::npos) << inf_msg;
   EXPECT_NE(inf_msg.find("non-finite position"), std::string::npos) << inf_msg;
 
-  std::string flags = slurp(fgood);
+  std::string flags = read_file(fgood);
   put<uint32_t>(flags, 36, 15);
   const fs::path fl = dir.write("flags.spf", with_fixed_crc(flags));
   EXPECT_NE(error_of([&] { read_fluid_cache(fl); }).find("flags 0xf"), std::string::npos);

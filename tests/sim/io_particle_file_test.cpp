@@ -6,7 +6,9 @@
 #include <functional>
 
 #include "sim/core/error.h"
-#include "tests/sim/io_test_support.h"
+#include "tests/support/error_of.h"
+#include "tests/support/files.h"
+#include "tests/support/temp_dir.h"
 #include "sim/io/bgeo.h"
 #include "sim/io/particle_file.h"
 #include "sim/io/ply.h"
@@ -15,7 +17,7 @@
 
 namespace fs = std::filesystem;
 using namespace spume;
-using namespace spume::io_test;
+using namespace spume::testing;
 
 namespace {
 

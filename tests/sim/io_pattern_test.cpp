@@ -6,12 +6,14 @@
 #include <unistd.h>
 
 #include "sim/core/error.h"
-#include "tests/sim/io_test_support.h"
+#include "tests/support/error_of.h"
+#include "tests/support/files.h"
+#include "tests/support/temp_dir.h"
 #include "sim/io/frame_pattern.h"
 
 namespace fs = std::filesystem;
 using namespace spume;
-using namespace spume::io_test;
+using namespace spume::testing;
 
 namespace {
 

@@ -7,12 +7,16 @@
 #include <functional>
 
 #include "sim/core/error.h"
+#include "tests/support/error_of.h"
+#include "tests/support/files.h"
+#include "tests/support/temp_dir.h"
 #include "tests/sim/io_test_support.h"
 #include "sim/io/ply.h"
 
 namespace fs = std::filesystem;
 using namespace spume;
 using namespace spume::io_test;
+using namespace spume::testing;
 
 namespace {
 
@@ -92,7 +96,7 @@ TEST(Ply, BinaryRoundTrip) {
   f.masses = {1.0f, 2.0f};
   const fs::path p = dir.path / "r.ply";
   write_ply(p, f);
-  const std::string bytes = slurp(p);
+  const std::string bytes = read_file(p);
   const size_t body = bytes.find("end_header\n") + 11;
   EXPECT_NE(bytes.find("format binary_little_endian 1.0\n"), std::string::npos);
   EXPECT_NE(bytes.find("element vertex 2\n"), std::string::npos);
@@ -116,7 +120,7 @@ TEST(Ply, CorruptAndTruncatedFilesGiveErrors) {
   f.ids = {1, 2, 3};
   const fs::path good = dir.path / "good.ply";
   write_ply(good, f);
-  const std::string bytes = slurp(good);
+  const std::string bytes = read_file(good);
   const size_t body = bytes.find("end_header\n") + 11;
   for (size_t cut : {size_t(2), size_t(20), body - 3, body + 5, bytes.size() - 1}) {
     const fs::path p = dir.write("cut" + std::to_string(cut) + ".ply", bytes.substr(0, cut));

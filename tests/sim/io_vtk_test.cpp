@@ -8,12 +8,16 @@
 #include <functional>
 
 #include "sim/core/error.h"
+#include "tests/support/error_of.h"
+#include "tests/support/files.h"
+#include "tests/support/temp_dir.h"
 #include "tests/sim/io_test_support.h"
 #include "sim/io/vtk.h"
 
 namespace fs = std::filesystem;
 using namespace spume;
 using namespace spume::io_test;
+using namespace spume::testing;
 
 namespace {
 
@@ -153,7 +157,7 @@ TEST(Vtk, BinaryRoundTrip) {
   f.masses = {1, 2, 3, 4};
   const fs::path p = dir.path / "rt.vtk";
   write_vtk(p, f);
-  const std::string bytes = slurp(p);
+  const std::string bytes = read_file(p);
   EXPECT_EQ(bytes.rfind("# vtk DataFile Version", 0), 0u);
   EXPECT_NE(bytes.find("\nBINARY\n"), std::string::npos);
   const FluidFrame g = read_vtk(p);

@@ -9,7 +9,7 @@
 #include "sim/diffuse/emission.h"
 #include "sim/diffuse/kernels.h"
 #include "sim/diffuse/simulator.h"
-#include "tests/sim/test_fluids.h"
+#include "tests/support/test_fluids.h"
 
 namespace spume {
 namespace {

@@ -10,6 +10,8 @@
 #include "sim/io/spume_cache.h"
 #include "sim/pipeline/cache_state.h"
 #include "sim/pipeline/simulate_scene.h"
+#include "tests/support/temp_dir.h"
+#include "tests/support/written_files.h"
 
 namespace spume {
 namespace {
@@ -36,15 +38,11 @@ SimScene scene_of(const Json& json) {
 class PipelineStages : public ::testing::Test {
  protected:
   void SetUp() override {
-    out = fs::temp_directory_path() / ("spume_stages_" + std::to_string(::getpid()) + "_" +
-                                       ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(out);
     options.out_root = out;
     options.quiet = true;
   }
-  void TearDown() override { fs::remove_all(out); }
-  fs::file_time_type mtime(const std::string& relative) const { return fs::last_write_time(out / "tiny" / relative); }
-  fs::path out;
+  const testing::TempDir temp;
+  const fs::path& out = temp.path;
   SimulateOptions options;
 };
 
@@ -78,15 +76,15 @@ TEST_F(PipelineStages, FluidCachesHoldTheSolverStateAtEachFrameTime) {
 TEST_F(PipelineStages, CurrentCachesAreReusedAndChangesRunTheStagesAgain) {
   Json json = tiny_solver_scene();
   simulate_scene(scene_of(json), options);
-  const auto fluid_time = mtime("fluid/fluid_0003.spf");
-  const auto diffuse_time = mtime("diffuse/diffuse_0003.spd");
+  testing::mark_files(out / "tiny/fluid");
+  testing::mark_files(out / "tiny/diffuse");
 
   // Nothing changed: neither stage runs, no file is touched.
   SceneSimulation again = simulate_scene(scene_of(json), options);
   EXPECT_TRUE(again.fluid.reused);
   EXPECT_TRUE(again.diffuse.reused);
-  EXPECT_EQ(mtime("fluid/fluid_0003.spf"), fluid_time);
-  EXPECT_EQ(mtime("diffuse/diffuse_0003.spd"), diffuse_time);
+  EXPECT_EQ(testing::written_since_mark(out / "tiny/fluid"), std::vector<std::string>{});
+  EXPECT_EQ(testing::written_since_mark(out / "tiny/diffuse"), std::vector<std::string>{});
 
   // A diffuse key: the fluid is reused, the diffuse stage runs.
   json["diffuse"] = {{"k_ta", 50}};

@@ -11,6 +11,7 @@
 
 #include "sim/core/progress.h"
 #include "sim/pipeline/fluid_stage.h"
+#include "tests/support/temp_dir.h"
 
 namespace spume {
 namespace {
@@ -70,8 +71,8 @@ SimScene tiny() {
 }
 
 TEST(ProgressWithinFrames, FluidStageReportsStepsAndTimeWithinEachFrameUnlessQuiet) {
-  const fs::path out = fs::temp_directory_path() / ("spume_progress_" + std::to_string(::getpid()));
-  fs::remove_all(out);
+  const testing::TempDir temp;
+  const std::filesystem::path& out = temp.path;
   FluidStageOptions o;
   o.out_root = out;
   o.partial_progress_interval = 0.0;  // every step
@@ -98,7 +99,6 @@ TEST(ProgressWithinFrames, FluidStageReportsStepsAndTimeWithinEachFrameUnlessQui
   fs::remove_all(out);
   o.quiet = true;
   EXPECT_EQ(stderr_of([&] { run_fluid_stage(tiny(), o); }), "");
-  fs::remove_all(out);
 }
 
 }  // namespace

@@ -6,7 +6,7 @@
 #include "sim/core/parallel.h"
 #include "sim/diffuse/simulator.h"
 #include "sim/scene/diffuse_params_reader.h"
-#include "tests/sim/test_fluids.h"
+#include "tests/support/test_fluids.h"
 
 namespace spume {
 namespace {

@@ -5,6 +5,7 @@
 
 #include "sim/core/error.h"
 #include "sim/io/stage_record.h"
+#include "tests/support/temp_dir.h"
 
 namespace spume {
 namespace {
@@ -65,8 +66,8 @@ TEST(StageRecord, AnotherFirstFrameOrOtherInputIsStale) {
 }
 
 TEST(StageRecord, RoundTripsThroughItsFileAndRemovalMeansUnfinished) {
-  const auto dir = std::filesystem::temp_directory_path() / ("spume_record_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(dir);
+  const testing::TempDir temp;
+  const std::filesystem::path& dir = temp.path;
   EXPECT_FALSE(read_stage_record(dir));
   StageRecord r = record(3, 7);
   r.other_inputs["bodies.csv"] = {1, 2, 0};
@@ -77,7 +78,6 @@ TEST(StageRecord, RoundTripsThroughItsFileAndRemovalMeansUnfinished) {
   EXPECT_EQ(match_records(*back, r).kind, RecordMatch::Kind::Current);
   remove_stage_record(dir);
   EXPECT_FALSE(read_stage_record(dir));
-  std::filesystem::remove_all(dir);
 }
 
 TEST(JsonDifference, NamesTheFirstDifferingPath) {

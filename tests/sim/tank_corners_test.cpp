@@ -10,7 +10,7 @@
 #include <random>
 
 #include "sim/diffuse/simulator.h"
-#include "tests/sim/test_fluids.h"
+#include "tests/support/test_fluids.h"
 
 namespace spume {
 namespace {

@@ -4,9 +4,10 @@
 
 #include <filesystem>
 
-#include "tests/sim/container_sequences.h"
+#include "tests/support/container_sequences.h"
 #include "sim/core/error.h"
 #include "sim/scene/tank_fit.h"
+#include "tests/support/temp_dir.h"
 
 namespace spume {
 namespace {
@@ -16,12 +17,6 @@ using testing::kSeqRadius;
 
 class TankFit : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir = fs::temp_directory_path() / ("spume_tank_fit_" + std::to_string(::getpid()) + "_" +
-                                       ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir);
-  }
-  void TearDown() override { fs::remove_all(dir); }
 
   // The collapsing column's frames (with `extra` added to the last one), surveyed.
   FluidSurvey survey(const std::vector<Vec3f>& extra = {}) {
@@ -40,7 +35,8 @@ class TankFit : public ::testing::Test {
     return SolidSet({t});
   }
 
-  fs::path dir;
+  const testing::TempDir temp;
+  const fs::path& dir = temp.path;
 };
 
 TEST_F(TankFit, TheTankTheFluidWasMadeInHoldsIt) {

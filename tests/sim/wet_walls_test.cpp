@@ -7,7 +7,7 @@
 #include "sim/diffuse/potentials.h"
 #include "sim/diffuse/simulator.h"
 #include "sim/geometry/solid_coverage.h"
-#include "tests/sim/test_fluids.h"
+#include "tests/support/test_fluids.h"
 
 namespace spume {
 namespace {

@@ -11,40 +11,28 @@
 
 #include "tests/stability/bad_files.h"
 #include "sim/io/bgeo.h"
-#include "tests/sim/run_command.h"
-#include "tests/sim/test_fluids.h"
+#include "tests/support/run_spume.h"
+#include "tests/support/temp_dir.h"
+#include "tests/support/test_fluids.h"
 
 namespace spume {
 namespace {
 
 namespace fs = std::filesystem;
 
-using Result = CommandResult;  // output: stdout and stderr
-
-Result run_spume(const std::string& arguments) {
-  return run_command(std::string(SPUME_BINARY) + " " + arguments + " 2>&1");
-}
+using testing::run_spume;
+using Result = testing::CommandResult;  // output: stdout and stderr
 
 class StabilityCommand : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir = fs::temp_directory_path() / ("spume_stab_cli_" + std::to_string(::getpid()) + "_" +
-                                       ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir);
     fs::create_directories(dir / "cache");
     // Four frames of two blocks running into each other at 2 m/s each.
     for (int k = 0; k < 4; ++k) {
-      auto a = testing::lattice(Vec3f(0, 0, 0), Vec3f(0.2f, 0.2f, 0.2f), 0.04f);
-      std::vector<Vec3f> x, v;
-      for (const Vec3f& p : a) {
-        x.push_back(p + Vec3f(0.04f * k, 0, 0)), v.push_back(Vec3f(2, 0, 0));
-        x.push_back(p + Vec3f(0.3f - 0.04f * k, 0, 0)), v.push_back(Vec3f(-2, 0, 0));
-      }
-      frames.push_back(testing::frame_of(k, 0, x, v));
+      frames.push_back(testing::blocks_closing_in(k, 0.2f, 0.3f, Vec3f(2, 0, 0)));
       write_frame(k);
     }
   }
-  void TearDown() override { fs::remove_all(dir); }
 
   void write_frame(int k) { write_bgeo(dir / "cache" / ("f_" + std::to_string(k) + ".bgeo"), frames[k]); }
   Result simulate(const std::string& diffuse) {
@@ -54,7 +42,8 @@ class StabilityCommand : public ::testing::Test {
   }
   bool wrote_caches() const { return fs::exists(dir / "out" / "scene" / "diffuse" / "diffuse_0000.spd"); }
 
-  fs::path dir;
+  const testing::TempDir temp;
+  const fs::path& dir = temp.path;
   std::vector<FluidFrame> frames;
 };
 

@@ -12,6 +12,7 @@
 #include "sim/io/vtk.h"
 #include "tests/stability/bad_files.h"
 #include "tests/stability/stability_support.h"
+#include "tests/support/temp_dir.h"
 
 namespace spume {
 namespace {
@@ -119,8 +120,8 @@ struct BadValue {
 };
 
 TEST(StabilityDegenerate, NonFiniteValuesAreRefusedNamingFileAndParticle) {
-  const fs::path dir = fs::temp_directory_path() / ("spume_stab_nan_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const testing::TempDir temp;
+  const std::filesystem::path& dir = temp.path;
   const BadValue bad[] = {{"nan position", NAN, false}, {"inf position", INFINITY, false},
                           {"nan velocity", NAN, true}, {"-inf velocity", -INFINITY, true}};
   for (const BadValue& b : bad) {
@@ -153,7 +154,6 @@ TEST(StabilityDegenerate, NonFiniteValuesAreRefusedNamingFileAndParticle) {
       EXPECT_NE(message.find(path.string()), std::string::npos) << b.what << ", " << f.name << ": " << message;
     }
   }
-  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -12,7 +12,8 @@
 #include "sim/core/error.h"
 #include "sim/fluid/blow_up.h"
 #include "tests/stability/stability_support.h"
-#include "tests/sim/run_command.h"
+#include "tests/support/run_spume.h"
+#include "tests/support/temp_dir.h"
 
 namespace spume {
 namespace {
@@ -125,18 +126,17 @@ TEST(StabilityBlowUp, CheckNamesTheParticleTheValueAndTheBound) {
 // so every 1/30 s frame is one step. Measured: speeds 0.5, 0.8, 2.0, 7.9, 4.3, 21 m/s in frames 1-6,
 // then 104 m/s at frame 7 (beyond 5 x sqrt(2 g 1 m) = 22.1 m/s), NaN at frame 10 without the check.
 TEST(StabilityBlowUp, OneStepFramesStopTheDamBreakAtFrameSevenWithoutARecord) {
-  const fs::path dir = fs::temp_directory_path() / ("spume_blowup_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const testing::TempDir temp;
+  const std::filesystem::path& dir = temp.path;
   std::ofstream(dir / "dambreak.json") << R"({
     "name": "dambreak",
     "fluid": {"source": "solver", "radius": 0.0093, "fps": 30, "frames": [0, 90],
               "blocks": [{"min": [0.0, 0.0, 0.0], "max": [0.4, 0.8, 0.6]}]},
     "solids": [{"type": "tank", "min": [0, 0, 0], "max": [1.6, 1.0, 0.6]}]
   })";
-  const CommandResult r =
-      run_command(std::string(SPUME_BINARY) + " simulate " + (dir / "dambreak.json").string() + " --frames 0-20 --out " +
-                  (dir / "out").string() + " --quiet --set fluid.solver.min_dt=1 --set fluid.solver.max_dt=1 2>&1");
+  const testing::CommandResult r =
+      testing::run_spume("simulate " + (dir / "dambreak.json").string() + " --frames 0-20 --out " +
+                         (dir / "out").string() + " --quiet --set fluid.solver.min_dt=1 --set fluid.solver.max_dt=1");
   EXPECT_EQ(r.status, 1) << r.output;
   for (const char* part : {"fluid frame 7 (t = 0.2", "blew up", "bound 22.147", "fluid.solver.max_dt (now 1 s)"})
     EXPECT_NE(r.output.find(part), std::string::npos) << part << " not in: " << r.output;
@@ -144,7 +144,6 @@ TEST(StabilityBlowUp, OneStepFramesStopTheDamBreakAtFrameSevenWithoutARecord) {
   EXPECT_TRUE(fs::exists(dir / "out/dambreak/fluid/fluid_0006.spf"));  // the frames before it were healthy
   EXPECT_FALSE(fs::exists(dir / "out/dambreak/fluid/fluid_0007.spf"));
   EXPECT_FALSE(fs::exists(dir / "out/dambreak/diffuse"));  // nothing downstream ran
-  fs::remove_all(dir);
 }
 
 }  // namespace

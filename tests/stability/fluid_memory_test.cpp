@@ -14,7 +14,8 @@
 #include "sim/fluid/memory_estimate.h"
 #include "sim/fluid/solver.h"
 #include "tests/stability/stability_support.h"
-#include "tests/sim/run_command.h"
+#include "tests/support/run_spume.h"
+#include "tests/support/temp_dir.h"
 
 namespace spume {
 namespace {
@@ -125,20 +126,18 @@ TEST(StabilityFluidMemory, ATenMetreCubeAtOneCentimetreIsRefusedWithinASecondWhe
   const fluid::MemoryEstimate e = fluid::estimate_memory(p, blocks, SolidSet());
   EXPECT_EQ(e.fluid_particles, 500.0 * 500 * 500);
   if (e.bytes <= *fluid::available_memory_bytes()) GTEST_SKIP() << "this machine could hold it";
-  const fs::path dir = fs::temp_directory_path() / ("spume_memory_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const testing::TempDir temp;
+  const std::filesystem::path& dir = temp.path;
   std::ofstream(dir / "big.json") << R"({"name": "big", "fluid": {"source": "solver", "radius": 0.01,
     "blocks": [{"min": [0, 0, 0], "max": [10, 10, 10]}]}})";
   const auto t0 = std::chrono::steady_clock::now();
-  const CommandResult r = run_command(std::string(SPUME_BINARY) + " simulate " + (dir / "big.json").string() +
-                                      " --out " + (dir / "out").string() + " 2>&1");
+  const testing::CommandResult r =
+      testing::run_spume("simulate " + (dir / "big.json").string() + " --out " + (dir / "out").string());
   EXPECT_LT(seconds_since(t0), 1.0);
   EXPECT_EQ(r.status, 1) << r.output;
   for (const char* part : {"125000000 fluid particles", "GB of memory", "is available"})
     EXPECT_NE(r.output.find(part), std::string::npos) << part << " not in: " << r.output;
   EXPECT_FALSE(fs::exists(dir / "out/big/fluid"));
-  fs::remove_all(dir);
 }
 
 }  // namespace

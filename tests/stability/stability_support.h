@@ -1,6 +1,6 @@
 #pragma once
-// Shared checks of the stability suite: every value finite, every particle inside the domain, the
-// message of an expected spume::Error, and a simulator run over a whole fluid sequence.
+// Shared checks of the stability suite: every value finite, every particle inside the domain, and a simulator run
+// over a whole fluid sequence.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,19 +11,12 @@
 #include "sim/core/error.h"
 #include "sim/diffuse/simulator.h"
 #include "sim/scene/diffuse_params_reader.h"
-#include "tests/sim/test_fluids.h"
+#include "tests/support/error_of.h"
+#include "tests/support/test_fluids.h"
 
 namespace spume::stability {
 
-inline std::string error_of(const std::function<void()>& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected spume::Error";
-  return "";
-}
+using testing::error_of;
 
 // Every diffuse value finite, every type valid, every lifetime finite (DiffuseFrame::validate checks
 // exactly this; a failure names the particle).

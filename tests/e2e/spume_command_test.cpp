@@ -1,55 +1,46 @@
 // The spume command on good and bad input: clear errors naming the key or file, the value and what
-// is allowed; non-zero exit; nothing half-written.
+// is allowed; non-zero exit; nothing half-written; a run makes every stage's outputs, and a second
+// run reuses them (seen in the stage records and the files on disk).
 #include <gtest/gtest.h>
 
-#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include "sim/io/bgeo.h"
 #include "sim/io/spume_cache.h"
-#include "tests/sim/run_command.h"
-#include "tests/sim/test_fluids.h"
+#include "sim/io/stage_record.h"
+#include "tests/support/csv.h"
+#include "tests/support/run_spume.h"
+#include "tests/support/temp_dir.h"
+#include "tests/support/test_fluids.h"
+#include "tests/support/written_files.h"
 
 namespace spume {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::run_spume;
 
-using Result = CommandResult;  // output: stdout and stderr
-
-Result run_spume(const std::string& arguments) {
-  return run_command(std::string(SPUME_BINARY) + " " + arguments + " 2>&1");
-}
+using Result = testing::CommandResult;  // output: stdout and stderr
 
 class SpumeCommand : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir = fs::temp_directory_path() / ("spume_cli_" + std::to_string(::getpid()) + "_" +
-                                       ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir);
     fs::create_directories(dir / "cache");
     // Three frames of two blocks closing in (gap 0.02 m at frame 1, overlapping after), as SPlisHSPlasH-style BGEO files numbered from 1.
-    for (int k = 1; k <= 3; ++k) {
-      auto a = testing::lattice(Vec3f(0, 0, 0), Vec3f(0.2f, 0.2f, 0.2f), 0.04f);
-      std::vector<Vec3f> x, v;
-      for (const Vec3f& p : a) {
-        x.push_back(p + Vec3f(0.04f * k, 0, 0)), v.push_back(Vec3f(2, 0, 0));
-        x.push_back(p + Vec3f(0.3f - 0.04f * k, 0, 0)), v.push_back(Vec3f(-2, 0, 0));
-      }
-      write_bgeo(dir / "cache" / ("ParticleData_Fluid_" + std::to_string(k) + ".bgeo"), testing::frame_of(k, 0, x, v));
-    }
+    for (int k = 1; k <= 3; ++k)
+      write_bgeo(dir / "cache" / ("ParticleData_Fluid_" + std::to_string(k) + ".bgeo"),
+                 testing::blocks_closing_in(k, 0.2f, 0.3f, Vec3f(2, 0, 0)));
   }
-  void TearDown() override { fs::remove_all(dir); }
 
   void write_scene(const std::string& json) { std::ofstream(dir / "scene.json") << json; }
   std::string scene() const { return (dir / "scene.json").string(); }
   std::string out() const { return (dir / "out").string(); }
   bool wrote_anything() const { return fs::exists(dir / "out"); }
 
-  fs::path dir;
+  const testing::TempDir temp;
+  const fs::path& dir = temp.path;
 };
 
 TEST_F(SpumeCommand, PostProcessesBgeoFilesWithNoSceneFile) {
@@ -200,31 +191,45 @@ constexpr const char* kTinySolverScene = R"({
 
 TEST_F(SpumeCommand, RunSimulatesRendersAndThenReusesEverything) {
   write_scene(std::string(kTinySolverScene) + "}}");
+  const fs::path fluid = dir / "out/tiny/fluid", diffuse = dir / "out/tiny/diffuse", frames = dir / "out/tiny/frames";
   Result r = run_spume("run " + scene() + " --out " + out());
   ASSERT_EQ(r.status, 0) << r.output;
   for (const char* name : {"0000.png", "0001.png", "0002.png"})
     EXPECT_EQ(png_size(dir / "out/tiny/frames" / name), std::make_pair(64, 36)) << name;
   EXPECT_NE(r.output.find("Saved: " + (dir / "out/tiny/frames/0002.png").string()), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("fluid solver           ran"), std::string::npos) << r.output;
+  // The fluid solver ran: its record says it made frames 0-2.
+  const std::optional<StageRecord> solved = read_stage_record(fluid);
+  ASSERT_TRUE(solved);
+  EXPECT_EQ(solved->first_frame, 0);
+  EXPECT_EQ(solved->last_frame, 2);
   EXPECT_NE(r.output.find("ran: surface reconstruction"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("ran: OSMesa surface pass"), std::string::npos) << r.output;
 
-  // Again: nothing is simulated or rendered.
+  // Again: nothing is simulated or rendered (no file of the stages or frames is written again).
+  for (const fs::path& folder : {fluid, diffuse, frames}) testing::mark_files(folder);
+  const std::string fluid_record = testing::read_file(fluid / "record.json");
+  const std::string diffuse_record = testing::read_file(diffuse / "record.json");
   r = run_spume("run " + scene() + " --out " + out());
   ASSERT_EQ(r.status, 0) << r.output;
-  EXPECT_NE(r.output.find("fluid solver           skipped"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("diffuse simulation     skipped"), std::string::npos) << r.output;
+  for (const fs::path& folder : {fluid, diffuse, frames})
+    EXPECT_EQ(testing::written_since_mark(folder), std::vector<std::string>{}) << folder;
+  EXPECT_EQ(testing::read_file(fluid / "record.json"), fluid_record);
+  EXPECT_EQ(testing::read_file(diffuse / "record.json"), diffuse_record);
   EXPECT_NE(r.output.find("0 frames written, 3 current on disk"), std::string::npos) << r.output;
 
   // A render key: frames are rendered again, the simulation is reused.
   r = run_spume("run " + scene() + " --out " + out() + " --set render.foam.radius=0.02");
   ASSERT_EQ(r.status, 0) << r.output;
-  EXPECT_NE(r.output.find("diffuse simulation     skipped"), std::string::npos) << r.output;
+  for (const fs::path& folder : {fluid, diffuse})
+    EXPECT_EQ(testing::written_since_mark(folder), std::vector<std::string>{}) << folder;
+  EXPECT_EQ(testing::written_since_mark(frames), (std::vector<std::string>{"0000.png", "0001.png", "0002.png"}));
   EXPECT_NE(r.output.find("3 frames written, 0 current on disk"), std::string::npos) << r.output;
 
   // --overwrite renders the chosen frames even though they are current.
+  testing::mark_files(frames);
   r = run_spume("render " + scene() + " --out " + out() + " --set render.foam.radius=0.02 --frames 1-1 --overwrite");
   ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(testing::written_since_mark(frames), std::vector<std::string>{"0001.png"});
   EXPECT_NE(r.output.find("1 frames written, 0 current on disk"), std::string::npos) << r.output;
 }
 
@@ -235,12 +240,11 @@ TEST_F(SpumeCommand, RunLeavesOutWhatTheSceneDoesNotShow) {
                  "bubble": {"radius": 0}}})");
   const Result r = run_spume("run " + scene() + " --out " + out());
   ASSERT_EQ(r.status, 0) << r.output;
-  EXPECT_NE(r.output.find("diffuse simulation     skipped"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("surface reconstruction"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("OSMesa"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("volume pass"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("CPU sky and ground"), std::string::npos) << r.output;
-  EXPECT_FALSE(fs::exists(dir / "out/tiny/diffuse"));
+  EXPECT_FALSE(fs::exists(dir / "out/tiny/diffuse"));  // the diffuse stage did not run
   EXPECT_EQ(png_size(dir / "out/tiny/frames/0001.png"), std::make_pair(64, 36));
 }
 
@@ -347,17 +351,12 @@ TEST_F(SpumeCommand, EmissionBeyondThePerParticleCapIsCountedAndWarned) {
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("more than 4095 new diffuse particles in one step"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("stats.csv 'capped'"), std::string::npos) << r.output;
-  std::ifstream stats(dir / "out/scene/stats.csv");
-  std::string line;
-  std::getline(stats, line);
-  ASSERT_EQ(line.rfind("frame,time,fluid,spray,foam,bubbles,generated,dissolved,removed,dropped,capped,", 0), 0u) << line;
-  uint64_t capped = 0;
-  while (std::getline(stats, line)) {
-    std::stringstream row(line);
-    std::string cell;
-    for (int column = 0; std::getline(row, cell, ','); ++column)
-      if (column == 10) capped += std::stoull(cell);
-  }
+  const auto stats = testing::read_csv(dir / "out/scene/stats.csv");
+  ASSERT_FALSE(stats.empty());
+  ASSERT_EQ(std::vector<std::string>(stats[0].begin(), stats[0].begin() + std::min<size_t>(stats[0].size(), 11)),
+            (std::vector<std::string>{"frame", "time", "fluid", "spray", "foam", "bubbles", "generated", "dissolved",
+                                      "removed", "dropped", "capped"}));
+  const double capped = testing::column_sum(stats, "capped");
   // Each facing particle at full potential loses 20000 - 4095 = 15905 per step.
   EXPECT_GT(capped, 15905u);
 }

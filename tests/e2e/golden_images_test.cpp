@@ -4,7 +4,7 @@
 // of pixels and 3/255 anywhere. On failure the comparison's report (report.html with the reference,
 // the new image, the x16 difference and the heat map; summary.csv and summary.json) is written to
 // out/tests/golden/<scene>_compare/. After an intended change of the pictures, refresh the goldens with
-//   SPUME_UPDATE_GOLDENS=1 build/tests/spume_render_tests --gtest_filter='GoldenImages*'
+//   SPUME_UPDATE_GOLDENS=1 build/tests/spume_e2e_tests --gtest_filter='GoldenImages*'
 // and look at them before committing.
 #include <gtest/gtest.h>
 
@@ -13,6 +13,7 @@
 #include <filesystem>
 
 #include "render/app/compare/compare_report.h"
+#include "tests/support/run_spume.h"
 
 namespace spume {
 namespace {
@@ -25,9 +26,9 @@ void check_golden(const std::string& scene, int frame) {
   const fs::path out = fs::path(SPUME_OUT_DIR) / "tests" / "golden";
   char name[64];
   std::snprintf(name, sizeof name, "%04d.png", frame);
-  const std::string command = std::string(SPUME_BINARY) + " run --quiet " + (kGoldenDir / (scene + ".json")).string() +
-                              " --out " + out.string() + " --frames " + std::to_string(frame) + " 2>&1";
-  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  const testing::CommandResult run = testing::run_spume("run --quiet " + (kGoldenDir / (scene + ".json")).string() +
+                                                       " --out " + out.string() + " --frames " + std::to_string(frame));
+  ASSERT_EQ(run.status, 0) << run.output;
   const fs::path rendered = out / scene / "frames" / name;
   const fs::path golden = kGoldenDir / (scene + "_" + name);
   if (std::getenv("SPUME_UPDATE_GOLDENS")) {

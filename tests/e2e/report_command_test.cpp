@@ -1,56 +1,29 @@
 // End to end: `spume report --quick` writes its CSVs, plots and report.md with sane values (surface and
 // stability without a scene; render and diffuse on a tiny solver scene); bad options are clear errors.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <array>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
+#include <string>
 #include <vector>
 
+#include "tests/support/csv.h"
+#include "tests/support/files.h"
+#include "tests/support/run_spume.h"
+#include "tests/support/temp_dir.h"
+
+namespace spume {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct Result {
-  int status = -1;
-  std::string output;
-};
-
-Result run_spume(const std::string& arguments) {
-  const std::string command = std::string(SPUME_BINARY) + " " + arguments + " 2>&1";
-  Result r;
-  FILE* pipe = popen(command.c_str(), "r");
-  std::array<char, 4096> buffer;
-  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) r.output.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
-std::vector<std::vector<std::string>> read_csv(const fs::path& path) {
-  std::ifstream in(path);
-  std::vector<std::vector<std::string>> rows;
-  std::string line;
-  while (std::getline(in, line)) {
-    std::vector<std::string> cells;
-    std::stringstream s(line);
-    std::string cell;
-    while (std::getline(s, cell, ',')) cells.push_back(cell);
-    rows.push_back(cells);
-  }
-  return rows;
-}
+using testing::read_csv;
+using testing::run_spume;
+using Result = testing::CommandResult;
 
 TEST(ReportCommand, QuickSurfaceAndStabilityWriteSaneFiles) {
-  const fs::path out = fs::temp_directory_path() / ("spume_report_e2e_" + std::to_string(getpid()));
-  fs::remove_all(out);
+  const testing::TempDir temp;
+  const fs::path& out = temp.path;
   // A tiny scene (the two studies do not simulate it; the command still takes the positional).
-  fs::create_directories(out);
   std::ofstream(out / "tiny.json") << R"({"fluid": {"source": "solver", "radius": 0.02, "frames": [0, 2],
     "blocks": [{"min": [0, 0, 0], "max": [0.2, 0.2, 0.2]}]}, "solids": [{"type": "tank", "min": [0, 0, 0], "max": [0.4, 0.4, 0.4]}]})";
   const Result ok = run_spume("report " + (out / "tiny.json").string() + " --quick --only surface,stability --quiet --out " +
@@ -86,15 +59,12 @@ TEST(ReportCommand, QuickSurfaceAndStabilityWriteSaneFiles) {
   ASSERT_GT(stability.size(), 10u);
   for (size_t i = 1; i < stability.size(); ++i) EXPECT_TRUE(stability[i][2] == "pass" || stability[i][2] == "FAIL");
 
-  std::ifstream md(dir / "report.md");
-  std::stringstream text;
-  text << md.rdbuf();
-  EXPECT_NE(text.str().find("![4. Surface reconstruction"), std::string::npos);
-  EXPECT_NE(text.str().find("| ball | "), std::string::npos);
-  EXPECT_NE(text.str().find("cases pass"), std::string::npos);
+  const std::string text = testing::read_file(dir / "report.md");
+  EXPECT_NE(text.find("![4. Surface reconstruction"), std::string::npos);
+  EXPECT_NE(text.find("| ball | "), std::string::npos);
+  EXPECT_NE(text.find("cases pass"), std::string::npos);
   // Nothing temporary is left.
   for (const auto& e : fs::directory_iterator(dir)) EXPECT_NE(e.path().filename().string()[0], '.') << e.path();
-  fs::remove_all(out);
 }
 
 TEST(ReportCommand, UnknownStudyIsAnErrorNamingTheValueAndTheAllowedOnes) {
@@ -112,15 +82,11 @@ TEST(ReportCommand, MissingSceneIsAnErrorBeforeAnyWork) {
   EXPECT_NE(r.output.find("/nonexistent/scene.json: no such scene file"), std::string::npos) << r.output;
 }
 
-}  // namespace
-
-namespace {
-
 // The render and diffuse studies on a tiny solver scene: it is simulated by the ordinary stages, then
 // measured. The values are checked against what the methods must do, not against stored numbers.
 TEST(ReportCommand, QuickRenderAndDiffuseOnATinySceneConvergeAsTheyMust) {
-  const fs::path out = fs::temp_directory_path() / ("spume_report_tiny_" + std::to_string(getpid()));
-  fs::remove_all(out);
+  const testing::TempDir temp;
+  const fs::path& out = temp.path;
   const Result r = run_spume("report " + std::string(SPUME_TEST_DATA_DIR) + "/report_tiny.json --quick --only render,diffuse --quiet --out " +
                              out.string());
   ASSERT_EQ(r.status, 0) << r.output;
@@ -167,7 +133,7 @@ TEST(ReportCommand, QuickRenderAndDiffuseOnATinySceneConvergeAsTheyMust) {
     }
   }
   EXPECT_EQ(scene_rows, 14);
-  fs::remove_all(out);
 }
 
 }  // namespace
+}  // namespace spume

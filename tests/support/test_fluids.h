@@ -1,5 +1,6 @@
 #pragma once
-// Small fluids for tests, built by hand: lattices of spacing 2r, and states around them.
+// Small fluids for tests, built by hand: lattices of spacing 2r, states and frames around them, and
+// two blocks of water thrown at each other (the inputs of the tests through the spume binary).
 #include <random>
 #include <vector>
 
@@ -43,6 +44,20 @@ inline FluidFrame frame_of(int index, double time, const std::vector<Vec3f>& pos
   f.velocities = velocities;
   for (uint32_t i = 0; i < positions.size(); ++i) f.ids.push_back(i);
   return f;
+}
+
+// Frame k of two cubes of side `side` on a 0.04 m lattice (radius 0.02 m) closing in along x, 0.04 m
+// nearer each other at every frame: the first from x = 0.04 k, the second from x = apart - 0.04 k;
+// the first moves at `velocity`, the second at its mirror image (x negated). Points alternate
+// between the two cubes.
+inline FluidFrame blocks_closing_in(int k, float side, float apart, const Vec3f& velocity) {
+  const std::vector<Vec3f> block = lattice(Vec3f(0, 0, 0), Vec3f(side, side, side), 0.04f);
+  std::vector<Vec3f> x, v;
+  for (const Vec3f& p : block) {
+    x.push_back(p + Vec3f(0.04f * k, 0, 0)), v.push_back(velocity);
+    x.push_back(p + Vec3f(apart - 0.04f * k, 0, 0)), v.push_back(Vec3f(-velocity.x(), velocity.y(), velocity.z()));
+  }
+  return frame_of(k, 0, x, v);
 }
 
 }  // namespace spume::testing

@@ -1,0 +1,40 @@
+#pragma once
+// Runs the spume binary under test (SPUME_BINARY, set by tests/CMakeLists.txt for each test binary that
+// starts it) and returns its exit status and output.
+#include <unistd.h>
+
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "tests/support/run_command.h"
+
+namespace spume::testing {
+
+struct SpumeOptions {
+  bool separate_stderr = false;  // stderr into `err` (through a file), stdout alone into `output`
+  std::string environment;       // assignments put before the binary, e.g. "PATH=/nonexistent"
+  std::string before;            // shell commands run first in the same shell, e.g. "ulimit -v 1572864"
+};
+
+// `spume ARGUMENTS` (shell words: quote patterns such as 'cache/f_%d.bgeo'). By default stdout and
+// stderr are captured together in the order written, as a terminal shows them.
+inline CommandResult run_spume(const std::string& arguments, const SpumeOptions& options = {}) {
+  std::string command;
+  if (!options.before.empty()) command += options.before + "; ";
+  if (!options.environment.empty()) command += options.environment + " ";
+  command += std::string(SPUME_BINARY) + " " + arguments;
+  if (!options.separate_stderr) return run_command(command + " 2>&1");
+  static std::atomic<int> counter = 0;
+  const std::filesystem::path err_file = std::filesystem::temp_directory_path() /
+                                         ("spume_stderr_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+  CommandResult r = run_command(command + " 2>'" + err_file.string() + "'");
+  std::ifstream in(err_file, std::ios::binary);
+  r.err.assign(std::istreambuf_iterator<char>(in), {});
+  std::filesystem::remove(err_file);
+  return r;
+}
+
+}  // namespace spume::testing
