@@ -1,13 +1,13 @@
 // spume report: error against run time for the renderer, the diffuse integrators, the fluid solver and
 // the surface reconstruction, plus the stability table, as OUT/report/ (CSV + PNG per study, report.md).
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 
 #include "render/app/cli/cli_args.h"
 #include "render/app/commands.h"
 #include "sim/core/error.h"
 #include "sim/core/parallel.h"
+#include "sim/core/stopwatch.h"
 #include "render/app/report/report_writer.h"
 #include "render/app/report/study.h"
 
@@ -75,14 +75,14 @@ int report_command(const cli::ParsedArgs& args) {
   };
 
   const std::filesystem::path dir = context.out_root / "report";
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch start;
   std::vector<report::StudyResult> results;
   for (const auto& entry : kStudies) {
     if (std::find(selected.begin(), selected.end(), entry.name) == selected.end()) continue;
     context.progress(str("study ", entry.name, " ..."));
-    const auto t0 = std::chrono::steady_clock::now();
+    const Stopwatch t0;
     report::StudyResult result = with_context(str("study ", entry.name), [&] { return entry.run(context); });
-    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    result.seconds = t0.seconds();
     report::write_study_files(result, dir);
     context.progress(str("study ", entry.name, " done in ", report::num(result.seconds, 3), " s -> ",
                          (dir / (result.key + ".csv")).string()));
@@ -92,7 +92,7 @@ int report_command(const cli::ParsedArgs& args) {
   header.scene = context.scene_path.string();
   header.quick = context.quick;
   header.threads = thread_count();
-  header.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  header.seconds = start.seconds();
   header.command = "spume report";
   for (const auto& a : args.raw) header.command += " " + a;
   report::write_report_markdown(header, results, dir);

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include "render/keys/render_keys.h"
 #include "sim/core/vec.h"
 
 namespace spume {
@@ -19,8 +20,9 @@ struct Camera {
   Vec3f position = Vec3f(0, 1, 3);   // m
   Vec3f target = Vec3f::Zero();      // m, looked at
   Vec3f up = Vec3f::UnitY();
-  float fov_y_degrees = 45.0f;       // vertical field of view
-  int width = 640, height = 360;     // pixels
+  float fov_y_degrees = declared_float(keys::render::camera_fov);  // vertical field of view
+  int width = int(keys::render::resolution.value[0]);   // pixels, by default render.resolution's
+  int height = int(keys::render::resolution.value[1]);
 
   // Orthonormal basis: right, true up, backward (camera looks along -back).
   void basis(Vec3f& right, Vec3f& true_up, Vec3f& back) const;
@@ -35,7 +37,7 @@ struct Camera {
 struct CameraKey {
   double time = 0.0;  // s
   Vec3f position = Vec3f(0, 1, 3), target = Vec3f::Zero();
-  float fov_y_degrees = 45.0f;
+  float fov_y_degrees = declared_float(keys::render::key_fov);
 };
 
 // The camera at time t: clamped to the first/last key outside their range. Keys sorted by time.

@@ -1,17 +1,14 @@
 #include "render/pipeline/frame_renderer.h"
 
-#include <chrono>
 
 #include "sim/core/error.h"
+#include "sim/core/stopwatch.h"
 #include "render/surface/reconstruct.h"
 #include "render/volume/composite.h"
 #include "render/volume/volume_pass.h"
 
 namespace spume {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 SurfacePassOptions pass_options(const RenderSettings& s) {
   SurfacePassOptions o;
@@ -42,11 +39,11 @@ ImageRGB8 FrameRenderer::render(const FrameInputs& in, FrameReport* report) {
 
   TriangleMesh water;
   if (settings_.draw_surface && !in.fluid.empty()) {
-    const auto t0 = Clock::now();
+    const Stopwatch t0;
     water = reconstruct_surface(in.fluid, settings_.surface);
     r.reconstructed = true;
     r.triangles = water.triangle_count();
-    r.reconstruct_seconds = seconds_since(t0);
+    r.reconstruct_seconds = t0.seconds();
   }
 
   SurfaceScene scene;
@@ -58,16 +55,16 @@ ImageRGB8 FrameRenderer::render(const FrameInputs& in, FrameReport* report) {
     scene.solids.push_back(scene_solid(s));
     opaque.append(s.mesh);
   }
-  auto t0 = Clock::now();
+  Stopwatch t0;
   SurfacePassStats surface_stats;
   const SurfaceImage background = surface_pass_.render(scene, camera, &surface_stats);
   r.used_gl = surface_stats.used_gl;
   r.surface = surface_stats;
-  r.surface_seconds = seconds_since(t0);
+  r.surface_seconds = t0.seconds();
 
   ImageRGBf colour = background.colour;
   if (in.diffuse && volume_pass_needed(*in.diffuse, settings_.volume)) {
-    t0 = Clock::now();
+    t0.restart();
     VolumeSurfaces surfaces;
     surfaces.water = water.empty() ? nullptr : &water;
     surfaces.solids = opaque.empty() ? nullptr : &opaque;
@@ -75,10 +72,10 @@ ImageRGB8 FrameRenderer::render(const FrameInputs& in, FrameReport* report) {
     const VolumeImage volume = render_volume(*in.diffuse, camera, settings_.volume, surfaces, &volume_stats);
     r.volume = true;
     r.spheres = volume_stats.spheres;
-    r.volume_seconds = seconds_since(t0);
-    t0 = Clock::now();
+    r.volume_seconds = t0.seconds();
+    t0.restart();
     colour = composite(volume, background.colour);
-    r.composite_seconds = seconds_since(t0);
+    r.composite_seconds = t0.seconds();
   }
   if (report) *report = r;
   return to_srgb8(colour);

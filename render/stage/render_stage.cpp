@@ -1,13 +1,13 @@
 #include "render/stage/render_stage.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 
 #include "sim/core/error.h"
 #include "sim/core/frame_spec.h"
 #include "sim/core/progress.h"
+#include "sim/core/stopwatch.h"
 #include "render/image/png_io.h"
 #include "sim/io/cache_layout.h"
 #include "sim/io/file_identity.h"
@@ -47,10 +47,6 @@ float lowest_point(const RenderScene& scene, int up) {
                                              : Aabb{s.min, s.max});
   const float extent = (box.max - box.min).norm();
   return box.min[up] - 1e-3f * extent;
-}
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 void add_surface_stages(SurfacePassStats& sum, const SurfacePassStats& s) {
@@ -146,7 +142,7 @@ LoadedFrame load_frame(PreparedRender& p, int f) {
 
 RenderStageSummary run_render_stage(PreparedRender& prepared, const nlohmann::json& render_keys,
                                     const std::vector<int>& frames, const RenderStageOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch start;
   const RenderScene& scene = *prepared.scene;
   const RenderSettings& settings = prepared.settings;
   const std::string pattern = (scene.scene_out / settings.frame_pattern).string();
@@ -169,13 +165,13 @@ RenderStageSummary run_render_stage(PreparedRender& prepared, const nlohmann::js
       progress.update(k + 1, "current, skipped");
       continue;
     }
-    const auto frame_start = std::chrono::steady_clock::now();
+    const Stopwatch frame_start;
     const LoadedFrame frame = load_frame(prepared, f);  // its errors name the frame
-    const double load_seconds = seconds_since(frame_start);
+    const double load_seconds = frame_start.seconds();
     with_context(str("frame ", f), [&] {
       FrameReport report;
       const ImageRGB8 image = renderer.render(frame.inputs(), &report);
-      const auto write_start = std::chrono::steady_clock::now();
+      const Stopwatch write_start;
       write_png(path, image, record);
       // Every frame as it is written, so a run stopped midway keeps the times of what it drew.
       merge_render_stats(scene.scene_out, {{.frame = f,
@@ -186,8 +182,8 @@ RenderStageSummary run_render_stage(PreparedRender& prepared, const nlohmann::js
                                             .surface = report.surface_seconds,
                                             .volume = report.volume_seconds,
                                             .composite = report.composite_seconds,
-                                            .write = seconds_since(write_start),
-                                            .total = seconds_since(frame_start)}});
+                                            .write = write_start.seconds(),
+                                            .total = frame_start.seconds()}});
       any_reconstructed |= report.reconstructed;
       any_gl |= report.used_gl;
       any_volume |= report.volume;
@@ -228,7 +224,7 @@ RenderStageSummary run_render_stage(PreparedRender& prepared, const nlohmann::js
     summary.stages.push_back((settings.volume.integrator == VolumeIntegrator::Exact ? "volume pass (exact)"
                                                                                     : "volume pass (march)") +
                              per_frame(total.volume_seconds));
-  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary.seconds = start.seconds();
   progress.finish(str(summary.written, " written, ", summary.skipped, " skipped -> ", frames_dir.string()));
   return summary;
 }

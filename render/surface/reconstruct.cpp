@@ -1,10 +1,10 @@
 #include "render/surface/reconstruct.h"
 
-#include <chrono>
 #include <cmath>
 
 #include "render/surface/colour_field.h"
 #include "sim/core/error.h"
+#include "sim/core/stopwatch.h"
 #include "render/surface/iso_surface.h"
 #include "render/surface/isolated_particles.h"
 #include "render/surface/mesh_smoothing.h"
@@ -23,7 +23,8 @@ void SurfaceParams::validate(const char* where) const {
   if (support_factor < 2.0f)
     fail(where, ": support factor ", support_factor,
          " is below 2: the kernel would not reach the neighbours at spacing 2r");
-  if (smoothing < 0 || smoothing > 100) fail(where, ": smoothing must be 0..100 iterations, got ", smoothing);
+  if (const std::string why = out_of_range(keys::render::surface_smoothing, smoothing); !why.empty())
+    fail(where, ": smoothing iterations (", keys::render::surface_smoothing.path, "): ", why);
   if (cell_factor > support_factor)
     fail(where, ": cell factor ", cell_factor, " exceeds the support factor ", support_factor,
          ": cells larger than the kernel lose the surface");
@@ -31,37 +32,35 @@ void SurfaceParams::validate(const char* where) const {
 
 TriangleMesh reconstruct_surface(std::span<const Vec3f> positions, const SurfaceParams& params, SurfaceStats* stats) {
   params.validate("surface");
-  using clock = std::chrono::steady_clock;
-  auto seconds = [](clock::time_point a) { return std::chrono::duration<double>(clock::now() - a).count(); };
   const float r = params.particle_radius, h = params.support_factor * r, cell = params.cell_factor * r;
   SurfaceStats s;
   s.particles = positions.size();
 
-  auto t = clock::now();
+  Stopwatch t;
   const auto kept = connected_particles(positions, h, params.min_neighbours);
   std::vector<Vec3f> fluid;
   fluid.reserve(kept.size());
   for (uint32_t i : kept) fluid.push_back(positions[i]);
   s.kept = fluid.size();
-  s.seconds_filter = seconds(t);
+  s.seconds_filter = t.seconds();
 
-  t = clock::now();
+  t.restart();
   const ColourField field(fluid, r, h, cell);
   s.bricks = field.brick_count();
-  s.seconds_field = seconds(t);
+  s.seconds_field = t.seconds();
 
-  t = clock::now();
+  t.restart();
   TriangleMesh mesh = extract_iso_surface(field, params.iso);
   s.vertices = mesh.vertices.size();
   s.triangles = mesh.triangle_count();
-  s.seconds_mesh = seconds(t);
+  s.seconds_mesh = t.seconds();
 
   if (params.smoothing > 0) {
-    t = clock::now();
+    t.restart();
     const VertexNeighbours neighbours = vertex_neighbours(mesh);
     smooth_positions(mesh, neighbours, params.smoothing);
     smooth_normals(mesh, neighbours, params.smoothing);
-    s.seconds_smooth = seconds(t);
+    s.seconds_smooth = t.seconds();
   }
   if (stats) *stats = s;
   return mesh;

@@ -15,12 +15,13 @@
 #include "sim/core/vec.h"
 #include "render/surface/triangle_mesh.h"
 #include "render/keys/render_keys.h"
+#include "sim/keys/scene_keys.h"
 
 namespace spume {
 
 struct SurfaceParams {
   float particle_radius = 0.0f;  // m, r (spacing 2r); required
-  float support_factor = 4.0f;   // kernel support h = factor * r (4r = two particle spacings)
+  float support_factor = keys::fluid::kSupportFactor;  // kernel support h = factor * r, the fluid's (two spacings)
   float cell_factor = float(keys::render::surface_cell.value[0]);  // marching-cubes cell = factor * r
   float iso = 0.5f;              // iso-level as a fraction of the bulk colour (0.5: outer extent)
   int min_neighbours = 5;        // particles with fewer other particles within h are left out

@@ -2,16 +2,17 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <memory>
 #include <optional>
 
 #include <tbb/enumerable_thread_specific.h>
 
+#include "render/keys/render_keys.h"
 #include "render/volume/absorption.h"
 #include "sim/core/error.h"
 #include "sim/core/parallel.h"
+#include "sim/core/stopwatch.h"
 #include "render/volume/embree_scene.h"
 #include "render/volume/point_grid.h"
 #include "render/volume/screen_bins.h"
@@ -20,9 +21,6 @@
 
 namespace spume {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 constexpr int kTile = ScreenBins::kTile;
 
@@ -37,7 +35,8 @@ void validate(const DiffuseFrame& frame, const Camera& camera, const VolumeSetti
   }
   if (!std::isfinite(s.alpha) || s.alpha < 0.0f) fail("volume pass: alpha ", s.alpha, " 1/m: must be >= 0");
   if (!finite3(s.water_sigma) || s.water_sigma.minCoeff() < 0.0f) fail("volume pass: water sigma must be >= 0 per channel (1/m)");
-  if (s.samples_per_pixel < 1 || s.samples_per_pixel > 4096) fail("volume pass: samples per pixel ", s.samples_per_pixel, " outside 1..4096");
+  if (const std::string why = out_of_range(keys::render::spp, s.samples_per_pixel); !why.empty())
+    fail("volume pass: samples per pixel (", keys::render::spp.path, "): ", why);
   if (!std::isfinite(s.march_step)) fail("volume pass: march step is not finite");
   if (camera.width <= 0 || camera.height <= 0) fail("volume pass: image size ", camera.width, "x", camera.height, " is empty");
   if (frame.types.size() != frame.positions.size())
@@ -239,7 +238,7 @@ VolumeImage render_volume(const DiffuseFrame& frame, const Camera& camera, const
 
   std::array<float, kDiffuseTypeCount> radius{};
   for (int k = 0; k < kDiffuseTypeCount; ++k) radius[size_t(k)] = settings.look[size_t(k)].radius;
-  const auto build_start = Clock::now();
+  const Stopwatch build_start;
   const Aabb bounds = drawn_bounds(frame, radius, st.spheres);
   if (st.spheres == 0) {
     st.skipped = true;
@@ -284,9 +283,9 @@ VolumeImage render_volume(const DiffuseFrame& frame, const Camera& camera, const
     hit_scene = std::make_unique<SphereHitScene>(frame, radius);
     pass.hits = hit_scene.get();
   }
-  st.build_seconds = seconds_since(build_start);
+  st.build_seconds = build_start.seconds();
 
-  const auto trace_start = Clock::now();
+  const Stopwatch trace_start;
   const int tiles_x = (camera.width + kTile - 1) / kTile, tiles_y = (camera.height + kTile - 1) / kTile;
   tbb::enumerable_thread_specific<Scratch> scratch;
   std::atomic<size_t> found{0};
@@ -312,7 +311,7 @@ VolumeImage render_volume(const DiffuseFrame& frame, const Camera& camera, const
         }
     }
   });
-  st.trace_seconds = seconds_since(trace_start);
+  st.trace_seconds = trace_start.seconds();
   st.rays = img.pixel_count() * size_t(spp);
   st.intervals = found;
   if (stats) *stats = st;

@@ -14,6 +14,7 @@
 
 #include "sim/core/atomic_file.h"
 #include "sim/core/error.h"
+#include "sim/core/stopwatch.h"
 
 namespace spume {
 namespace {
@@ -71,7 +72,7 @@ OutputLock::OutputLock(const std::filesystem::path& dir, Mode mode, const std::s
   const std::string ours = (mode == Mode::Exclusive ? "exclusive " + std::to_string(::getpid()) : "shared " + keys);
   const std::string holder = what + " (pid " + std::to_string(::getpid()) + ")";
   bool told = false;
-  const auto since = std::chrono::steady_clock::now();
+  const Stopwatch waited;
   for (;;) {
     {
       Gate gate(gate_path);
@@ -95,8 +96,7 @@ OutputLock::OutputLock(const std::filesystem::path& dir, Mode mode, const std::s
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
   }
   if (told && !quiet)
-    std::fprintf(stderr, "%s is free after %.1f s\n", dir.string().c_str(),
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count());
+    std::fprintf(stderr, "%s is free after %.1f s\n", dir.string().c_str(), waited.seconds());
 }
 
 OutputLock::~OutputLock() {

@@ -126,26 +126,6 @@ double ParamReader::number(const std::string& key, double fallback) const {
   return note(key, fallback);
 }
 
-double ParamReader::number_in(const std::string& key, double fallback, double lo, double hi) const {
-  const double v = number(key, fallback);
-  if (v < lo || v > hi) fail_at(key, str("value ", v, " is out of range; allowed [", lo, ", ", hi, "]"));
-  return v;
-}
-
-double ParamReader::positive(const std::string& key, double fallback) const {
-  const double v = number(key, fallback);
-  if (!(v > 0)) fail_at(key, str("value ", v, " must be > 0"));
-  if (v < double(std::numeric_limits<float>::min()))
-    fail_at(key, str("value ", v, " is too small: it would be 0 as a 32-bit float (positive values start at about 1.2e-38)"));
-  return v;
-}
-
-double ParamReader::non_negative(const std::string& key, double fallback) const {
-  const double v = number(key, fallback);
-  if (!(v >= 0)) fail_at(key, str("value ", v, " must be >= 0"));
-  return v;
-}
-
 long ParamReader::integer_in(const std::string& key, long fallback, long lo, long hi) const {
   const Json* v = find(key);
   if (!v) return note(key, fallback);

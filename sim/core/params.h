@@ -40,10 +40,6 @@ class ParamReader {
 
   // Typed getters: default when absent; an error naming the key for wrong types or ranges.
   double number(const std::string& key, double fallback) const;
-  double number_in(const std::string& key, double fallback, double lo, double hi) const;  // lo <= v <= hi
-  double positive(const std::string& key, double fallback) const;                         // v > 0
-  double non_negative(const std::string& key, double fallback) const;                     // v >= 0
-  std::optional<double> optional_number(const std::string& key) const;
   long integer_in(const std::string& key, long fallback, long lo, long hi) const;
   bool boolean(const std::string& key, bool fallback) const;
   std::string text(const std::string& key, const std::string& fallback) const;
@@ -92,6 +88,8 @@ class ParamReader {
 
  private:
   const Json* find(const std::string& key) const;  // records the lookup
+  // A finite number that fits a float, or nullopt when absent (number() and the declared getters).
+  std::optional<double> optional_number(const std::string& key) const;
   // Records the value used for `key` (doc_->used); returns it.
   template <typename T>
   T note(const std::string& key, T value) const;

@@ -19,8 +19,7 @@ Progress::Progress(std::string label, size_t total, bool quiet, double partial_i
     : label_(std::move(label)), total_(total), quiet_(quiet), terminal_(::isatty(2) == 1),
       partial_interval_(partial_interval >= 0.0 ? partial_interval
                         : terminal_        ? kPartialIntervalTerminal
-                                           : kPartialIntervalLog),
-      start_(std::chrono::steady_clock::now()), last_line_(start_) {}
+                                           : kPartialIntervalLog) {}
 
 Progress::~Progress() {
   if (open_line_) std::fputc('\n', stderr);
@@ -28,10 +27,9 @@ Progress::~Progress() {
 
 void Progress::update(size_t done, const std::string& note) {
   if (quiet_) return;
-  const auto now = std::chrono::steady_clock::now();
   // Not throttled: off a terminal (farm logs, pipes) every frame gets its own line, so a log says
   // which frame a job reached.
-  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  const double elapsed = since_start_.seconds();
   const double rate = elapsed > 0 ? double(done) / elapsed : 0.0;
   std::string line = str(label_, ": frame ", done, "/", total_);
   if (done > 0) {
@@ -46,8 +44,7 @@ void Progress::update(size_t done, const std::string& note) {
 
 bool Progress::partial_due() const {
   if (quiet_) return false;
-  const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_line_).count();
-  return since >= partial_interval_;
+  return since_line_.seconds() >= partial_interval_;
 }
 
 void Progress::partial(size_t done, const std::string& note) {
@@ -63,12 +60,12 @@ void Progress::print(const std::string& line) {
     std::fprintf(stderr, "%s\n", line.c_str());
   }
   std::fflush(stderr);
-  last_line_ = std::chrono::steady_clock::now();
+  since_line_.restart();
 }
 
 void Progress::finish(const std::string& note) {
   if (quiet_) return;
-  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const double elapsed = since_start_.seconds();
   if (open_line_) std::fputc('\n', stderr), open_line_ = false;
   std::fprintf(stderr, "%s: %zu frames in %s%s%s\n", label_.c_str(), total_, format_duration(elapsed).c_str(),
                note.empty() ? "" : "  ", note.c_str());
@@ -78,7 +75,7 @@ void Progress::message(const std::string& line) {
   if (quiet_) return;
   if (open_line_) std::fputc('\n', stderr), open_line_ = false;
   std::fprintf(stderr, "%s\n", line.c_str());
-  last_line_ = std::chrono::steady_clock::now();
+  since_line_.restart();
 }
 
 }  // namespace spume

@@ -7,8 +7,9 @@
 // Items that take minutes (a frame of a big fluid) report from inside with `partial`:
 // "LABEL: frame DONE+1/TOTAL in progress  NOTE", at most once a second on a terminal and once every
 // 10 s otherwise (so a farm log grows by a line per 10 s, not per solver step).
-#include <chrono>
 #include <string>
+
+#include "sim/core/stopwatch.h"
 
 namespace spume {
 
@@ -32,7 +33,7 @@ class Progress {
   size_t total_;
   bool quiet_, terminal_, open_line_ = false;
   double partial_interval_;
-  std::chrono::steady_clock::time_point start_, last_line_;
+  Stopwatch since_start_, since_line_;
   void print(const std::string& line);
 };
 

@@ -1,10 +1,10 @@
 #include "sim/diffuse/simulator.h"
 
 #include <atomic>
-#include <chrono>
 
 #include "sim/core/error.h"
 #include "sim/core/parallel.h"
+#include "sim/core/stopwatch.h"
 #include "sim/diffuse/advection.h"
 #include "sim/diffuse/emission.h"
 #include "sim/geometry/solid_coverage.h"
@@ -12,18 +12,16 @@
 namespace spume {
 namespace {
 
+// Adds the wall-clock time of its scope to a stage's total.
 class StageTimer {
  public:
-  StageTimer(FrameStats& stats, Stage stage) : stats_(stats), stage_(stage), start_(std::chrono::steady_clock::now()) {}
-  ~StageTimer() {
-    stats_.stage_ms[size_t(stage_)] +=
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
-  }
+  StageTimer(FrameStats& stats, Stage stage) : stats_(stats), stage_(stage) {}
+  ~StageTimer() { stats_.stage_ms[size_t(stage_)] += watch_.milliseconds(); }
 
  private:
   FrameStats& stats_;
   Stage stage_;
-  std::chrono::steady_clock::time_point start_;
+  Stopwatch watch_;
 };
 
 }  // namespace

@@ -11,46 +11,41 @@
 
 namespace spume {
 
-namespace fluid_default {
-constexpr float declared(const KeySpec& k, int i = 0) { return float(k.value[size_t(i)]); }
-}  // namespace fluid_default
-
 struct FluidSolverParams {
   // Particles sit on a lattice of spacing 2r; the cubic spline kernel has support h = 4r.
   float particle_radius = 0.01f;  // r, m; for callers without a scene (a scene must give fluid.radius)
-  float rest_density = fluid_default::declared(keys::fluid::rest_density);  // rho0, kg/m^3; mass rho0 (2r)^3
+  float rest_density = declared_float(keys::fluid::rest_density);  // rho0, kg/m^3; mass rho0 (2r)^3
   // Kinematic viscosity nu (m^2/s) of the standard SPH Laplacian (forces.h). Water is 1e-6, which
   // leaves the solver's particle-scale noise undamped (a tank at rest keeps ~0.2 m/s rms for seconds,
   // measured); the default damps that noise at r ~ 5-10 mm within a fraction of a second (rate
   // ~10 nu / h^2) while a 1 m wave barely feels it (decay time L^2 / nu ~ 1000 s). Lower it for
   // livelier splashes at fine resolution.
-  float viscosity = fluid_default::declared(keys::solver::viscosity);
+  float viscosity = declared_float(keys::solver::viscosity);
   // Same term between fluid and solid particles: friction of the unresolved wall boundary layer,
   // m^2/s. 0 = free-slip walls. With the default, the dam-break surge front follows Martin & Moyce
   // (1952) within ~10%; free-slip walls run ~15-20% ahead (tests/sim/fluid_dam_break_test.cpp).
-  float boundary_viscosity = fluid_default::declared(keys::solver::boundary_viscosity);
+  float boundary_viscosity = declared_float(keys::solver::boundary_viscosity);
   // XSPH velocity smoothing [Monaghan 1989]: each step moves v_i this fraction of the way towards
   // the kernel average of its neighbours' velocities (dimensionless, 0..1). 0 = off.
-  float xsph = fluid_default::declared(keys::solver::xsph);
-  Vec3f gravity = Vec3f(fluid_default::declared(keys::scene::gravity, 0), fluid_default::declared(keys::scene::gravity, 1),
-                        fluid_default::declared(keys::scene::gravity, 2));  // m/s^2
+  float xsph = declared_float(keys::solver::xsph);
+  Vec3f gravity = declared_vec3<Vec3f>(keys::scene::gravity);  // m/s^2
 
   // Time step: dt = cfl * 2r / max speed (fluid and moving solids), also at most h^2 / (32 nu) for
   // the explicit viscosity to stay stable (h = 4r; binds only for large nu), clamped to
   // [min_dt, max_dt].
-  float cfl = fluid_default::declared(keys::solver::cfl);
+  float cfl = declared_float(keys::solver::cfl);
   double min_dt = keys::solver::min_dt.value[0];  // s
   double max_dt = keys::solver::max_dt.value[0];  // s
 
   // Constant-density solve: iterate until the average predicted compression (rho* - rho0) / rho0
   // over all particles (expansion counts as 0) is at most this; 0.0005 = 0.05%.
-  float density_tolerance = fluid_default::declared(keys::solver::density_tolerance);
+  float density_tolerance = declared_float(keys::solver::density_tolerance);
   int min_density_iterations = int(keys::solver::min_density_iterations.value[0]);
   int max_density_iterations = int(keys::solver::max_density_iterations.value[0]);
   // Divergence-free solve: iterate until the average compression rate times dt,
   // mean(max(D rho / Dt, 0)) dt / rho0, is at most this; 0.001 = 0.1% of rho0 per step.
   bool divergence_solve = keys::solver::divergence_solve.value[0] != 0.0;
-  float divergence_tolerance = fluid_default::declared(keys::solver::divergence_tolerance);
+  float divergence_tolerance = declared_float(keys::solver::divergence_tolerance);
   int min_divergence_iterations = int(keys::solver::min_divergence_iterations.value[0]);
   int max_divergence_iterations = int(keys::solver::max_divergence_iterations.value[0]);
   // Start each solve from half the previous step's pressure (pressure.h explains why it is off).
@@ -58,9 +53,9 @@ struct FluidSolverParams {
 
   // Boundary particles fill the solids to depth h on a lattice of this spacing, in units of r
   // (2 = the fluid's own spacing, which makes a wall read exactly as the missing fluid).
-  float boundary_spacing = fluid_default::declared(keys::solver::boundary_spacing);
+  float boundary_spacing = declared_float(keys::solver::boundary_spacing);
   // A fluid particle found inside a solid after a step is put this far (in units of r) outside it.
-  float push_out_skin = fluid_default::declared(keys::solver::push_out_skin);
+  float push_out_skin = declared_float(keys::solver::push_out_skin);
 };
 
 // An initial cuboid of fluid, m. Filled on a lattice of spacing 2r centred in the box, so the

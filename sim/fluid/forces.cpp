@@ -1,7 +1,7 @@
 #include "sim/fluid/forces.h"
 
 #include "sim/core/parallel.h"
-#include "sim/fluid/kernel.h"
+#include "sim/core/cubic_spline.h"
 
 namespace spume::fluid {
 
@@ -12,7 +12,7 @@ void non_pressure_accelerations(const FluidSolverParams& params, const Neighbour
   const float nu = 10.0f * params.viscosity, nu_b = 10.0f * params.boundary_viscosity;  // 2 (d + 2) nu
   const float soften = 0.01f * h * h;  // keeps the term finite for coincident particles
   const float xsph = params.xsph / float(dt);
-  const Kernel kernel(h);
+  const CubicSpline kernel(h);
   if (nu == 0.0f && nu_b == 0.0f && xsph == 0.0f) {
     parallel_for(n, 4096, [&](size_t b, size_t e) {
       for (size_t i = b; i < e; ++i) p.accel[i] = g;
@@ -34,7 +34,7 @@ void non_pressure_accelerations(const FluidSolverParams& params, const Neighbour
       if (xsph > 0.0f)
         for (uint32_t k = nb.offset[i]; k < nb.offset[i + 1]; ++k) {
           const Pair q = nb.pairs[k];
-          const float w = kernel.W((xi - p.x[q.j]).norm());
+          const float w = kernel.value((xi - p.x[q.j]).norm());
           a += (xsph * volume * w / p.density[q.j]) * (p.v[q.j] - vi);
         }
       if (nu_b > 0.0f) {

@@ -9,6 +9,7 @@
 #include "sim/core/error.h"
 #include "sim/fluid/boundary.h"
 #include "sim/fluid/particles.h"
+#include "sim/keys/scene_keys.h"
 
 namespace spume::fluid {
 namespace {
@@ -48,7 +49,7 @@ MemoryEstimate estimate_memory(const FluidSolverParams& params, const std::vecto
   MemoryEstimate e;
   for (const FluidBlock& b : blocks) e.fluid_particles += block_lattice(b, params.particle_radius).count();
   e.boundary_particles = count_boundary(solids, params.boundary_spacing * params.particle_radius,
-                                        4.0f * params.particle_radius);
+                                        keys::fluid::support_radius_of(params.particle_radius));
   e.bytes = kBytesPerFluidParticle * e.fluid_particles + kBytesPerBoundaryParticle * e.boundary_particles;
   return e;
 }

@@ -17,7 +17,7 @@ constexpr size_t kCellsPerTask = 32;
 
 }  // namespace
 
-void build_neighbourhoods(const NeighbourGrid& grid, const Boundary& boundary, const Kernel& kernel, float volume,
+void build_neighbourhoods(const NeighbourGrid& grid, const Boundary& boundary, const CubicSpline& kernel, float volume,
                           Particles& p, Neighbourhoods& nb) {
   const size_t n = p.size();
   const float h = kernel.h, h2 = h * h;
@@ -68,7 +68,7 @@ void build_neighbourhoods(const NeighbourGrid& grid, const Boundary& boundary, c
             hits += d2[k] <= h2;
           }
           const size_t first = task.pairs.size();
-          float w_sum = kernel.W0();
+          float w_sum = kernel.value_at_zero();
           Vec3f g_fluid = Vec3f::Zero();
           float g2_sum = 0.0f;
           for (size_t c_hit = 0; c_hit < hits; ++c_hit) {
@@ -78,7 +78,7 @@ void build_neighbourhoods(const NeighbourGrid& grid, const Boundary& boundary, c
             const float r = std::sqrt(d2[k]);
             const Vec3f g = (volume * kernel.grad_factor(r)) * (xi - p.x[j]);
             task.pairs.push_back(Pair{j, g.x(), g.y(), g.z()});
-            w_sum += kernel.W(r);
+            w_sum += kernel.value(r);
             g_fluid += g;
             g2_sum += g.squaredNorm();
           }
@@ -89,7 +89,7 @@ void build_neighbourhoods(const NeighbourGrid& grid, const Boundary& boundary, c
             const float r = std::sqrt(dist2);
             const Vec3f g = (bvol[k] * kernel.grad_factor(r)) * (xi - bx[k]);
             task.boundary_pairs.push_back(Pair{k, g.x(), g.y(), g.z()});
-            bw_sum += bvol[k] * kernel.W(r);
+            bw_sum += bvol[k] * kernel.value(r);
             g_boundary += g;
           });
           nb.counts[i] = uint32_t(task.pairs.size() - first);

@@ -8,9 +8,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "sim/core/cubic_spline.h"
 #include "sim/core/vec.h"
 #include "sim/fluid/boundary.h"
-#include "sim/fluid/kernel.h"
 #include "sim/fluid/particles.h"
 #include "sim/grid/neighbour_grid.h"
 
@@ -41,7 +41,7 @@ struct Neighbourhoods {
 
 // `grid` must have been built over p.x with p already reordered into the grid's sorted order, so
 // sorted index == particle index. Fills `nb`, p.density (rho/rho0) and p.factor (alpha_i).
-void build_neighbourhoods(const NeighbourGrid& grid, const Boundary& boundary, const Kernel& kernel, float volume,
+void build_neighbourhoods(const NeighbourGrid& grid, const Boundary& boundary, const CubicSpline& kernel, float volume,
                           Particles& p, Neighbourhoods& nb);
 
 }  // namespace spume::fluid

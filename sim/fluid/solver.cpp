@@ -1,34 +1,36 @@
 #include "sim/fluid/solver.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "sim/core/error.h"
 #include "sim/core/parallel.h"
+#include "sim/core/stopwatch.h"
 #include "sim/fluid/forces.h"
 #include "sim/fluid/memory_estimate.h"
 #include "sim/fluid/pressure.h"
 #include "sim/fluid/reduce.h"
 #include "sim/fluid/time_step.h"
+#include "sim/keys/scene_keys.h"
 
 namespace spume {
 namespace {
 
+// Adds the wall-clock time of its scope to a stage's total.
 class StageTimer {
  public:
-  explicit StageTimer(double& seconds) : seconds_(seconds), start_(std::chrono::steady_clock::now()) {}
-  ~StageTimer() { seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+  explicit StageTimer(double& seconds) : seconds_(seconds) {}
+  ~StageTimer() { seconds_ += watch_.seconds(); }
 
  private:
   double& seconds_;
-  std::chrono::steady_clock::time_point start_;
+  Stopwatch watch_;
 };
 
 }  // namespace
 
 FluidSolver::FluidSolver(FluidSolverParams params, const std::vector<FluidBlock>& blocks, SolidSet solids)
-    : params_(params), solids_(std::move(solids)), kernel_(4.0f * params.particle_radius) {
+    : params_(params), solids_(std::move(solids)), kernel_(keys::fluid::support_radius_of(params.particle_radius)) {
   validate(params_);
   solids_.validate();
   fluid::check_memory(fluid::estimate_memory(params_, blocks, solids_), fluid::available_memory_bytes());

@@ -35,11 +35,11 @@
 #include <vector>
 
 #include "sim/core/frames.h"
+#include "sim/core/cubic_spline.h"
 #include "sim/fluid/blow_up.h"
 #include "sim/fluid/boundary.h"
 #include "sim/fluid/coupling.h"
 #include "sim/fluid/fluid_params.h"
-#include "sim/fluid/kernel.h"
 #include "sim/fluid/neighbours.h"
 #include "sim/fluid/particles.h"
 #include "sim/fluid/restart_state.h"
@@ -109,7 +109,7 @@ class FluidSolver {
 
   FluidSolverParams params_;
   SolidSet solids_;
-  fluid::Kernel kernel_;
+  CubicSpline kernel_;
   float volume_;
   fluid::Particles particles_;
   fluid::Boundary boundary_;

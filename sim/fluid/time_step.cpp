@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "sim/fluid/reduce.h"
+#include "sim/keys/scene_keys.h"
 
 namespace spume::fluid {
 
@@ -22,7 +23,7 @@ TimeStepChoice cfl_time_step(const FluidSolverParams& params, const Particles& p
   c.max_speed = speed;
   const double cfl_dt = speed > 0.0 ? double(params.cfl) * 2.0 * double(params.particle_radius) / speed : INFINITY;
   // Explicit diffusion is stable for dt <= h_s^2 / (8 nu) with the smoothing length h_s = h / 2.
-  const double h = 4.0 * double(params.particle_radius);
+  const double h = double(keys::fluid::support_radius_of(params.particle_radius));
   const double nu = std::max(params.viscosity, params.boundary_viscosity);
   const double viscous_dt = nu > 0.0 ? h * h / (32.0 * nu) : INFINITY;
   const double wanted = std::min(cfl_dt, viscous_dt);

@@ -18,7 +18,7 @@ struct SolidCoverage {
   Vec3f gradient = Vec3f::Zero();     // ∫ over solid ∩ ball of ∇_x W(x - y) dy, 1/m; points into the solid
 };
 
-// W is the cubic spline of support h used by the surface test (diffuse/kernels.h, CubicSpline).
+// W is the cubic spline of support h used by the surface test (core/cubic_spline.h).
 // `with_gradient`: false skips the gradient (classification needs only the fraction).
 SolidCoverage solid_coverage(const SolidSet& solids, const Vec3f& p, float h, bool with_gradient);
 

@@ -62,6 +62,9 @@ struct KeySpec {
 // over a water particle of radius r0, for Scaling::Energy).
 double scaled_default(const KeySpec& k, int i, double r, double mass_ratio = 1.0);
 
+// The declared default value[i] as a float, for struct defaults (the readers scale and check it).
+constexpr float declared_float(const KeySpec& k, int i = 0) { return float(k.value[size_t(i)]); }
+
 // The declared default of a Vec3 or Colour key as a 3-vector V (Vec3f), for struct defaults; a
 // template so the declarations need no vector type.
 template <class V>

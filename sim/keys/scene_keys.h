@@ -31,6 +31,11 @@ inline constexpr KeySpec radius{.path = "fluid.radius", .unit = "m", .lo = 1e-5,
 inline constexpr KeySpec support_radius{.path = "fluid.support_radius", .unit = "m", .value = {4}, .scaling = Radius,
                                         .lo = 0, .hi = 100, .lo_bound = Open, .hi_bound = Closed,
                                         .doc = "influence radius h (the solver uses 4 r)"};
+// h as a multiple of r: the declared default, which the fluid solver's kernel always uses and the
+// renderer's surface field too. The factor is written once, in the declaration above.
+inline constexpr float kSupportFactor = float(support_radius.value[0]);
+// h = 4 r for particle radius r (exact in float: a power of two times r).
+inline constexpr float support_radius_of(float r) { return kSupportFactor * r; }
 inline constexpr KeySpec fps{.path = "fluid.fps", .unit = "1/s", .value = {50}, .lo = 1e-3, .hi = 1e5,
                              .lo_bound = Closed, .hi_bound = Closed,
                              .doc = "frames per second of the fluid frames (stored as double)"};

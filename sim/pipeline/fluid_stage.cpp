@@ -1,6 +1,5 @@
 #include "sim/pipeline/fluid_stage.h"
 
-#include <chrono>
 #include <cstdio>
 #include <sstream>
 
@@ -9,6 +8,7 @@
 #include "sim/core/atomic_file.h"
 #include "sim/core/error.h"
 #include "sim/core/progress.h"
+#include "sim/core/stopwatch.h"
 #include "sim/fluid/solver.h"
 #include "sim/pipeline/fluid_continuation.h"
 #include "sim/io/bgeo.h"
@@ -71,7 +71,7 @@ bool fluid_caches_current(const SimScene& scene, const std::filesystem::path& ou
 
 FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions& options) {
   if (scene.source != FluidSourceKind::Solver) fail(scene.name, ": the fluid stage needs fluid.source \"solver\"");
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch start;
   const std::filesystem::path out = options.out_root / scene.name;
   const std::filesystem::path dir = out / "fluid";
   const int last = fluid_stage_last_frame(scene, options);
@@ -127,7 +127,7 @@ FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions
   BodyTrack bodies;
   bodies.fps = scene.fluid.fps;
   for (int f = first; f <= last; ++f) {
-    const auto t0 = std::chrono::steady_clock::now();
+    const Stopwatch t0;
     const double t = double(f) / scene.fluid.fps;
     const size_t done = size_t(f - first);
     with_context(str("fluid frame ", f, " (t = ", solver.time(), " to ", t, " s)"), [&] {
@@ -143,7 +143,7 @@ FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions
     if (scene.write_fluid_bgeo) write_bgeo(fluid_bgeo_path(out, f), frame);
     const SolverStats now = solver.stats();
     stats += stats_row(f, frame.time, now, before,
-                       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+                       t0.seconds());
     progress.update(done + 1, str("frame ", f, ": ", now.steps - before.steps, " steps, density error ",
                                   100.0 * now.density_error, "%"));
     before = now;
@@ -157,7 +157,7 @@ FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions
   write_file_atomically(dir / "solver_stats.csv", [&](std::ostream& o) { o << stats; });
   write_stage_record(dir, fluid_stage_record(scene, last));
   remove_fluid_restarts(out, last);
-  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary.seconds = start.seconds();
   const SolverStats s = solver.stats();
   progress.finish(str(s.steps, " steps, mean dt ", s.average_dt * 1e3, " ms, max density error ",
                       100.0 * s.max_density_error, "% -> ", dir.string()));

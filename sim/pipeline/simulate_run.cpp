@@ -1,6 +1,5 @@
 #include "sim/pipeline/simulate_run.h"
 
-#include <chrono>
 #include <cstdio>
 #include <algorithm>
 #include <cstdlib>
@@ -12,6 +11,7 @@
 #include "sim/core/atomic_file.h"
 #include "sim/core/error.h"
 #include "sim/core/progress.h"
+#include "sim/core/stopwatch.h"
 #include "sim/diffuse/simulator.h"
 #include "sim/io/bgeo.h"
 #include "sim/io/cache_layout.h"
@@ -141,7 +141,7 @@ std::string stats_rows_up_to(const std::filesystem::path& path, int last) {
 
 SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs, FluidSource& source,
                                const SimulateOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch start;
   const std::vector<int> frames = diffuse_frames_to_run(scene, source, options);
   SimulateSummary summary;
   summary.out_dir = options.out_root / scene.name;
@@ -201,11 +201,11 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
     double io_ms = 0.0;
     auto write_frame = [&](const DiffuseFrame& particles, const FrameStats& stats) {
       if (k == resume && resume > 0) return;  // the frame continued from is on disk already
-      const auto t0 = std::chrono::steady_clock::now();
+      const Stopwatch t0;
       write_diffuse_cache(diffuse_cache_path(summary.out_dir, particles.index), particles);
       if (scene.write_bgeo)
         write_bgeo(diffuse_bgeo_path(summary.out_dir, particles.index), particles);
-      io_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      io_ms = t0.milliseconds();
       if (stats.dropped > 0 && !warned_budget) {
         progress.message(str("warning: the emission budget diffuse.max_particles = ", *scene.diffuse.max_particles,
                              " binds from frame ", particles.index,
@@ -255,7 +255,7 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
                          " frame intervals left their particles unpaired)"));
   write_file_atomically(summary.out_dir / "stats.csv", [&](std::ostream& out) { out << stats_text; });
   write_stage_record(cache_dir, wanted);
-  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary.seconds = start.seconds();
   progress.finish(str("max ", summary.max_diffuse, " diffuse particles -> ", summary.out_dir.string()));
   return summary;
 }

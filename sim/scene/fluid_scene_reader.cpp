@@ -17,8 +17,9 @@ FluidSolverSetup read_fluid_solver(const ParamReader& fluid, const Vec3f& gravit
   p.rest_density = float(fluid.number(f::rest_density));
   if (fluid.has(f::support_radius.name())) {
     const double h = fluid.number(f::support_radius, p.particle_radius);
-    if (std::abs(h - 4.0 * p.particle_radius) > 1e-6 * h)
-      fluid.fail_at("support_radius", str("the built-in solver uses h = 4 x radius = ", 4.0 * p.particle_radius,
+    const double solver_h = f::support_radius_of(p.particle_radius);
+    if (std::abs(h - solver_h) > 1e-6 * h)
+      fluid.fail_at("support_radius", str("the built-in solver uses h = ", f::kSupportFactor, " x radius = ", solver_h,
                                           " m; found ", h, " (leave the key out)"));
   }
   p.gravity = gravity;

@@ -4,17 +4,15 @@
 //           v(t) = w + (v0 - w) e^{-t/tau}, x(t) = x0 + w t + (v0 - w) tau (1 - e^{-t/tau}), w = u - k_b g tau
 // The paper's bubble update is compared with the same ODE: it relaxes a fixed fraction k_d per step,
 // which equals the ODE's rate only at dt = reference_step (MODEL.md §8.4).
-#include <chrono>
 #include <cmath>
 
 #include "sim/core/error.h"
+#include "sim/core/stopwatch.h"
 #include "sim/diffuse/advection.h"
 #include "render/app/report/diffuse_runs.h"
 
 namespace spume::report {
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 // Particles spread a little so the batch is not one value repeated; particle 0 is the measured one.
 void start(std::vector<Vec3f>& x, std::vector<Vec3f>& v, const Vec3f& v0, int n) {
@@ -63,13 +61,13 @@ std::vector<AnalyticRun> analytic_runs(const DiffuseParams& scene_params, double
       DiffuseParams p = scene_params;
       p.bubble_drag = it.drag;
       const BubbleStep bubble = bubble_step(p, dt);
-      const auto t0 = Clock::now();
+      const Stopwatch t0;
       for (int s = 0; s < frames * n; ++s)
         for (size_t i = 0; i < x.size(); ++i) {
           if (it.spray) advance_spray(x[i], v[i], scene_params.gravity, dt, it.spray_kind);
           else advance_bubble(x[i], v[i], u, bubble);
         }
-      ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count() / frames * 1e6 / particles);
+      ms.push_back(t0.milliseconds() / frames * 1e6 / particles);
       end.push_back(x[0].cast<double>());
     }
     const Vec3d exact = it.spray ? spray_exact : bubble_exact;

@@ -3,12 +3,12 @@
 // paper) and spume's defaults (exact, exponential). Emission draws different random numbers at
 // each substep count, so only statistics are compared: per-type counts and the particle density
 // on a coarse grid.
-#include <chrono>
 #include <cmath>
 
 #include "sim/pipeline/scene_inputs.h"
 #include "render/app/scene/scene_args.h"
 #include "sim/core/error.h"
+#include "sim/core/stopwatch.h"
 #include "sim/diffuse/simulator.h"
 #include "render/app/report/diffuse_runs.h"
 #include "sim/io/spume_cache.h"
@@ -87,10 +87,10 @@ SceneWindow scene_runs(const StudyContext& c, const SceneSetup& setup, int last,
       DiffuseSimulator sim(s);
       sim.set_particles(start);
       SceneRun run{config.name, n, seed, {}, {}, 0.0};
-      const auto t0 = std::chrono::steady_clock::now();
+      const Stopwatch t0;
       for (size_t k = 0; k + 1 < fluid.size(); ++k) sim.process_frame(fluid[k], &fluid[k + 1], [](auto&, auto&) {});
       run.ms_per_frame =
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() / double(fluid.size() - 1);
+          t0.milliseconds() / double(fluid.size() - 1);
       sim.process_frame(fluid.back(), nullptr, [&](const DiffuseFrame& f, const FrameStats&) {
         const auto counts = f.count_by_type();
         run.counts = {counts[0], counts[1], counts[2]};

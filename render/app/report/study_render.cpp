@@ -3,13 +3,13 @@
 // chords): transmittance L and the final 8-bit image, against the volume pass's time, on the busiest
 // frame of the scene.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "render/app/scene/scene_render.h"
 #include "render/stage/render_stage.h"
 #include "render/app/report/convergence_fit.h"
 #include "sim/core/error.h"
+#include "sim/core/stopwatch.h"
 #include "render/image/image.h"
 #include "render/pipeline/frame_renderer.h"
 #include "render/app/report/report_scene.h"
@@ -37,10 +37,6 @@ Errors compare(const VolumeImage& march, const ImageRGB8& march8, const VolumeIm
   }
   e.rgb_rms = std::sqrt(e.rgb_rms / double(exact8.rgb.size()));
   return e;
-}
-
-double milliseconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 }  // namespace
@@ -74,9 +70,9 @@ StudyResult study_render(const StudyContext& c) {
   SurfacePassOptions pass_options;
   pass_options.supersample = settings.supersample;
   SurfacePass pass(pass_options);
-  const auto t_bg = std::chrono::steady_clock::now();
+  const Stopwatch t_bg;
   const ImageRGBf background = pass.render(scene, camera).colour;
-  const double background_ms = milliseconds_since(t_bg);
+  const double background_ms = t_bg.milliseconds();
   VolumeSurfaces surfaces;
   surfaces.water = water.empty() ? nullptr : &water;
   surfaces.solids = opaque.empty() ? nullptr : &opaque;
@@ -94,9 +90,9 @@ StudyResult study_render(const StudyContext& c) {
     VolumeImage image;
     ms = INFINITY;
     for (int k = 0; k < repeats; ++k) {
-      const auto t0 = std::chrono::steady_clock::now();
+      const Stopwatch t0;
       image = render_volume(loaded.diffuse, camera, v, surfaces);
-      ms = std::min(ms, milliseconds_since(t0));
+      ms = std::min(ms, t0.milliseconds());
     }
     return image;
   };

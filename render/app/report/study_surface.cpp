@@ -3,11 +3,11 @@
 // its normal: a ball of particles (the sphere of the same volume, N (2r)^3) and a box of particles (the
 // box the lattice cells tile).
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <numbers>
 
 #include "sim/core/error.h"
+#include "sim/core/stopwatch.h"
 #include "render/surface/reconstruct.h"
 #include "render/app/report/study.h"
 
@@ -79,9 +79,9 @@ Measure measure(const Shape& shape, float cell, int smoothing, int repeats) {
   std::vector<double> times;
   TriangleMesh mesh;
   for (int k = 0; k < repeats; ++k) {
-    const auto t0 = std::chrono::steady_clock::now();
+    const Stopwatch t0;
     mesh = reconstruct_surface(shape.particles, p);
-    times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    times.push_back(t0.milliseconds());
   }
   std::sort(times.begin(), times.end());
   m.ms = times[times.size() / 2];
