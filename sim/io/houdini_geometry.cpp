@@ -41,6 +41,8 @@ Bytes json_bytes(const std::filesystem::path& path) {
   } else if (io::has_gzip_magic(file)) {
     b.json = io::gunzip(file, where);
     b.container = "gzip";
+  } else if (io::lower_file_name(path).ends_with(".bgeo.sc") && !(file.size() > 0 && uint8_t(file[0]) == 0x7f)) {
+    decompress_scf(file, where);  // says what a .bgeo.sc should start with
   } else {
     b.json = std::move(file);
   }
