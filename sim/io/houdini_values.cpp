@@ -79,6 +79,12 @@ void decode_paged(Reader& r, const Block& b, uint64_t count, int size, std::vect
       ++part;
     }
   }
+  r.seek(*b.raw);
+  const Numbers raw = read_numbers(r, str(what, " rawpagedata"));
+  // Every page needs at least one number per part: a bound on the page count before walking the pages.
+  if (raw.size() / packing.size() < pages)
+    r.fail_at(*b.raw, what, ": rawpagedata holds ", raw.size(), " numbers, fewer than the ", pages, " pages of ",
+              pagesize, " that ", count, " elements fill need");
   // What the layout needs, counted before anything is written.
   uint64_t needed = 0;
   for (uint64_t page = 0; page < pages; ++page) {
@@ -86,8 +92,6 @@ void decode_paged(Reader& r, const Block& b, uint64_t count, int size, std::vect
     for (size_t k = 0; k < packing.size(); ++k)
       needed += uint64_t(packing[k]) * (!constant[k].empty() && constant[k][page] ? 1 : elements);
   }
-  r.seek(*b.raw);
-  const Numbers raw = read_numbers(r, str(what, " rawpagedata"));
   if (raw.size() != needed)
     r.fail_at(*b.raw, what, ": rawpagedata holds ", raw.size(), " numbers; ", count, " elements of ", size,
               " in pages of ", pagesize, " with the constant pages given need ", needed);

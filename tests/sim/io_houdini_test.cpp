@@ -11,6 +11,7 @@
 #include <set>
 #include <vector>
 
+#include "sim/io/frame_pattern.h"
 #include "sim/io/houdini_geometry.h"
 #include "sim/io/io_bytes.h"
 #include "sim/io/particle_file.h"
@@ -331,6 +332,20 @@ TEST(HoudiniGeometry, TruncatedAndCorruptedCopiesAreRefusedNamingTheFile) {
   }
 }
 
+// Houdini names cache frames with $F (no padding) or $F4 (4 digits); other $F... variables stay text.
+TEST(HoudiniGeometry, FramePatternsTakeHoudinisFrameVariable) {
+  EXPECT_EQ(expand_frame_pattern("geo/flip.$F4.bgeo.sc", 7), "geo/flip.0007.bgeo.sc");
+  EXPECT_EQ(expand_frame_pattern("geo/flip.$F.bgeo.sc", 12), "geo/flip.12.bgeo.sc");
+  EXPECT_EQ(expand_frame_pattern("geo/$FPS_$F2.bgeo.sc", 3), "geo/$FPS_03.bgeo.sc");
+  EXPECT_TRUE(is_frame_pattern("a.$F.bgeo"));
+  EXPECT_FALSE(is_frame_pattern("a.$FF.bgeo"));
+  EXPECT_TRUE(contains(error_of([] { expand_frame_pattern("a.$F.%d.bgeo", 1); }), "more than one frame placeholder"));
+  TempDir dir;
+  for (const char* name : {"c.0009.bgeo.sc", "c.0010.bgeo.sc", "c.10.bgeo.sc"}) dir.touch(name);
+  EXPECT_EQ(find_pattern_frames((dir.path / "c.$F4.bgeo.sc").string()), (std::vector<int>{9, 10}));
+  EXPECT_EQ(find_pattern_frames((dir.path / "c.$F.bgeo.sc").string()), (std::vector<int>{10}));
+}
+
 // ---- Through the binary: info on a real file, and a frame pattern over .bgeo.sc files.
 
 TEST(HoudiniGeometry, InfoAndAFramePatternOverRealFiles) {
@@ -345,7 +360,7 @@ TEST(HoudiniGeometry, InfoAndAFramePatternOverRealFiles) {
     fs::copy_file(kCopies / f, dir.path / "cache" / f);
   // RBD pieces about 0.44 m apart stand in for particles of radius 0.22 m.
   r = run_command("cd " + dir.path.string() + " && " + SPUME_BINARY +
-                  " simulate --quiet --fluid 'cache/retime_demoscene.%d.bgeo.sc' --radius 0.22 --out out 2>&1");
+                  " simulate --quiet --fluid 'cache/retime_demoscene.$F.bgeo.sc' --radius 0.22 --out out 2>&1");
   EXPECT_EQ(r.status, 0) << r.output;
   EXPECT_TRUE(fs::exists(dir.path / "out/retime_demoscene/diffuse/diffuse_0011.spd")) << r.output;
 }
