@@ -172,13 +172,15 @@ TEST(HoudiniGeometry, RealFilesAgreeWithTheirOwnInfoBlock) {
 // ---- Hand-made files: a binary JSON writer.
 
 struct Json {
+  io::Endian e = io::Endian::Little;
   std::string b = "\x7fNSJb";
+  explicit Json(io::Endian endian = io::Endian::Little) : e(endian), b(e == io::Endian::Little ? "\x7fNSJb" : "\x7f" "bJSN") {}
   void len(uint64_t n) {
     if (n < 0xf1) {
       b += char(n);
     } else {
       b += char(0xf4);
-      io::store(b, uint32_t(n), io::Endian::Little);
+      io::store(b, uint32_t(n), e);
     }
   }
   Json& open() { return b += '[', *this; }
@@ -190,13 +192,13 @@ struct Json {
     return *this;
   }
   Json& i8(int v) { return b += '\x11', b += char(int8_t(v)), *this; }
-  Json& f32(float v) { return b += '\x19', io::store(b, v, io::Endian::Little), *this; }
+  Json& f32(float v) { return b += '\x19', io::store(b, v, e), *this; }
   template <typename T>
   Json& uniform(char code, const std::vector<T>& v) {
     b += '\x40';
     b += code;
     len(v.size());
-    for (T x : v) io::store(b, x, io::Endian::Little);
+    for (T x : v) io::store(b, x, e);
     return *this;
   }
   Json& bits(const std::vector<bool>& v) {
@@ -205,7 +207,7 @@ struct Json {
     for (size_t w = 0; w < (v.size() + 31) / 32; ++w) {
       uint32_t word = 0;
       for (size_t i = 0; i < 32 && w * 32 + i < v.size(); ++i) word |= uint32_t(v[w * 32 + i]) << i;
-      io::store(b, word, io::Endian::Little);
+      io::store(b, word, e);
     }
     return *this;
   }
@@ -290,6 +292,45 @@ TEST(HoudiniGeometry, PagedPackedConstantTuplesAndArraysInEveryContainer) {
     EXPECT_EQ(read_fluid_file(p).size(), 4u);
     EXPECT_TRUE(contains(describe_particle_file(p), "left out: 1 points with a negative id")) << describe_particle_file(p);
   }
+}
+
+// The storages the real files do not use, in a file written big-endian ("bJSN"):
+//   P    fpreal16 paged: halves 0.5 1.5 -2 | 0.25 3 0 | 1 2 -0.5 (exact in half precision)
+//   vel  int16 as arrays (one per component): x 1 -2 3, y 300 0 -300, z 7 8 9
+//   id   uint16 paged: 10 65535 3;  mass uint8 paged: 1 2 200
+TEST(HoudiniGeometry, SmallStoragesBigEndianAndTheVelocityNamedVel) {
+  Json j(io::Endian::Big);
+  j.open().s("pointcount").i8(3).s("attributes").open().s("pointattributes").open();
+  const std::vector<uint16_t> halves = {0x3800, 0x3e00, 0xc000, 0x3400, 0x4200, 0x0000, 0x3c00, 0x4000, 0xb800};
+  attribute(j, "P", 3, "fpreal16", [&](Json& k) { k.s("pagesize").i8(64).s("rawpagedata").uniform<uint16_t>('\x18', halves); });
+  attribute(j, "vel", 3, "int16", [](Json& k) {
+    k.s("arrays").open().uniform<int16_t>('\x12', {1, -2, 3}).uniform<int16_t>('\x12', {300, 0, -300});
+    k.uniform<int16_t>('\x12', {7, 8, 9}).close();
+  });
+  attribute(j, "id", 1, "uint16", [](Json& k) { k.s("pagesize").i8(64).s("rawpagedata").uniform<uint16_t>('\x22', {10, 65535, 3}); });
+  attribute(j, "mass", 1, "uint8", [](Json& k) { k.s("pagesize").i8(64).s("rawpagedata").uniform<uint8_t>('\x21', {1, 2, 200}); });
+  j.close().close().close();
+  TempDir dir;
+  HoudiniGeometryInfo info;
+  const FluidFrame f = read_houdini_geometry(dir.write("small.bgeo", j.b), &info);
+  ASSERT_EQ(f.size(), 3u);
+  EXPECT_EQ(f.positions[0], Vec3f(0.5f, 1.5f, -2.0f));
+  EXPECT_EQ(f.positions[1], Vec3f(0.25f, 3.0f, 0.0f));
+  EXPECT_EQ(f.positions[2], Vec3f(1.0f, 2.0f, -0.5f));
+  EXPECT_EQ(info.velocity_attribute, "vel");
+  EXPECT_EQ(f.velocities[0], Vec3f(1, 300, 7));
+  EXPECT_EQ(f.velocities[2], Vec3f(3, -300, 9));
+  EXPECT_EQ(f.ids, (std::vector<uint32_t>{10, 65535, 3}));
+  EXPECT_EQ(f.masses, (std::vector<float>{1, 2, 200}));
+  // A velocity of the wrong size is refused by name.
+  Json w;
+  w.open().s("pointcount").i8(1).s("attributes").open().s("pointattributes").open();
+  attribute(w, "P", 3, "fpreal32", [](Json& k) { k.s("tuples").open().open().f32(0).f32(0).f32(0).close().close(); });
+  attribute(w, "v", 2, "fpreal32", [](Json& k) { k.s("tuples").open().open().f32(0).f32(0).close().close(); });
+  w.close().close().close();
+  const fs::path bad = dir.write("v2.bgeo", w.b);
+  const std::string msg = error_of([&] { read_fluid_file(bad); });
+  EXPECT_TRUE(contains(msg, bad.string() + ": point attribute 'v' has 2 components; a velocity needs 3")) << msg;
 }
 
 // ---- Broken input: refused with the file named, never a crash, nothing decompressed beyond the headers.
