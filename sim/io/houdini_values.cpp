@@ -1,5 +1,6 @@
 #include "sim/io/houdini_values.h"
 
+#include <new>
 #include <numeric>
 #include <optional>
 
@@ -43,6 +44,16 @@ struct Block {
   std::optional<size_t> tuples, arrays, raw, packing, flags;
   std::optional<int64_t> pagesize, size;
 };
+
+// Constant pages let a few numbers stand for many elements: a count that does not fit is an Error naming
+// the file, not an exception without one.
+void allocate(const Reader& r, std::vector<double>& out, uint64_t count, int size, std::string_view what) {
+  try {
+    out.assign(size_t(count) * size_t(size), 0.0);
+  } catch (const std::bad_alloc&) {
+    fail(r.where(), ": ", what, ": ", count, " elements of ", size, " numbers do not fit in memory");
+  }
+}
 
 void decode_paged(Reader& r, const Block& b, uint64_t count, int size, std::vector<double>& out, std::string_view what) {
   if (!b.pagesize) r.fail_at(*b.raw, what, ": paged values (rawpagedata) without a pagesize");
@@ -95,7 +106,7 @@ void decode_paged(Reader& r, const Block& b, uint64_t count, int size, std::vect
   if (raw.size() != needed)
     r.fail_at(*b.raw, what, ": rawpagedata holds ", raw.size(), " numbers; ", count, " elements of ", size,
               " in pages of ", pagesize, " with the constant pages given need ", needed);
-  out.assign(size_t(count) * size_t(size), 0.0);
+  allocate(r, out, count, size, what);
   uint64_t pos = 0;
   for (uint64_t page = 0; page < pages; ++page) {
     const uint64_t first = page * pagesize, elements = std::min(pagesize, count - first);
@@ -121,7 +132,7 @@ void read_values(Reader& r, uint64_t count, int size, std::vector<double>& out, 
   while (!r.end_of(Kind::ArrayEnd)) {
     const std::string_view key = r.string(str(what, " value key"));
     if (key == "size") b.size = r.integer(str(what, " size"), 1, 1 << 16);
-    else if (key == "pagesize") b.pagesize = r.integer(str(what, " pagesize"), 1, int64_t(1) << 24);
+    else if (key == "pagesize") b.pagesize = r.integer(str(what, " pagesize"), 1, 1 << 16);  // Houdini's is 1024
     else {
       std::optional<size_t>* slot = key == "tuples" ? &b.tuples : key == "arrays" ? &b.arrays : key == "rawpagedata" ? &b.raw
                                     : key == "packing" ? &b.packing : key == "constantpageflags" ? &b.flags : nullptr;
@@ -158,7 +169,7 @@ void read_values(Reader& r, uint64_t count, int size, std::vector<double>& out, 
         r.fail_at(at, what, ": an array of ", parts.back().size(), " numbers; the geometry has ", count, " elements");
     }
     if (parts.size() != size_t(size)) r.fail_at(*b.arrays, what, ": ", parts.size(), " arrays for a tuple size of ", size);
-    out.assign(size_t(count) * size_t(size), 0.0);
+    allocate(r, out, count, size, what);
     for (int c = 0; c < size; ++c)
       for (uint64_t e = 0; e < count; ++e) out[size_t(e) * size_t(size) + size_t(c)] = parts[size_t(c)][e];
   } else {
