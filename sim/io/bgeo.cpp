@@ -96,12 +96,14 @@ class HeaderCursor {
 };
 
 void reject_other_formats(std::string_view b, const std::string& where) {
-  const std::string hint = "; export classic geometry from Houdini (.bhclassic, or .bgeo with classic format) instead";
+  const std::string hint = "; spume reads Houdini's binary geometry (.bgeo, .bgeo.gz, .bgeo.sc) and classic BGEO";
   if (b.size() >= 4 && b.substr(0, 4) == "\x7fNSJ")
-    fail(where, ": this is Houdini's newer binary JSON geometry (starts 7F 'NSJ'), not classic BGEO", hint);
+    fail(where, ": this is Houdini's binary JSON geometry (starts 7F 'NSJ'), not classic BGEO; read it as Houdini "
+         "geometry (spume does so for any .bgeo that starts this way)");
   const size_t first = b.find_first_not_of(" \t\r\n");
   if (first != std::string_view::npos && (b[first] == '{' || b[first] == '['))
-    fail(where, ": this is Houdini's ASCII JSON geometry, not classic BGEO", hint);
+    fail(where, ": this is Houdini's ASCII JSON geometry, not classic BGEO; save it from Houdini as .bgeo or .bgeo.sc",
+         hint);
   if (b.substr(0, 9) == "PGEOMETRY")
     fail(where, ": this is classic ASCII .geo, not binary BGEO", hint);
   if (b.size() < 5 || b.substr(0, 5) != "BgeoV") {

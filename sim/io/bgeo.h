@@ -10,7 +10,8 @@
 //   Points: x y z w as float32, then each attribute's words in declaration order.
 //   Without primitives or groups: the detail attribute definitions (same form), one record of their
 //   words, and the end marker 00 FF.
-// Houdini's newer JSON geometry (binary 7F 'N' 'S' 'J', or ASCII '{'/'[') is detected and rejected.
+// Houdini's JSON geometry (binary 7F 'N' 'S' 'J', or ASCII '{'/'[') is detected and refused here: the binary
+// form is io/houdini_geometry.h's, which io/particle_file.h picks by the first bytes.
 #include <filesystem>
 #include <vector>
 

@@ -61,7 +61,7 @@ class FileSequenceSource final : public FluidSource {
   FileSequenceSource(std::string pattern, double fps, bool allow_gaps, float velocity_scale)
       : pattern_(std::move(pattern)), fps_(fps), allow_gaps_(allow_gaps), velocity_scale_(velocity_scale) {
     if (!is_frame_pattern(pattern_))
-      fail(pattern_, ": a fluid file pattern needs one frame placeholder (%d, %04d or ####)");
+      fail(pattern_, ": a fluid file pattern needs one frame placeholder (%d, %04d, #### or $F, $F4)");
     files_ = find_pattern_frames(pattern_);
     if (files_.empty()) fail(pattern_, ": no files match this pattern");
     frames_ = files_;

@@ -18,7 +18,7 @@ class FluidSource {
   virtual std::string describe() const = 0;
 };
 
-// Files named by a pattern with %d, %04d or #### (e.g. "cache/ParticleData_Fluid_%d.bgeo"). With
+// Files named by a pattern with %d, %04d, #### or $F4 (e.g. "cache/ParticleData_Fluid_%d.bgeo"). With
 // `allow_gaps`, frames missing between the first and last file are available too, interpolated
 // between the files on either side (interpolate_frames); without, they are simply not listed (the
 // stages refuse a range with a gap, naming the missing frame).

@@ -23,7 +23,7 @@ int scan(const std::string& pattern, bool strict, ParsedPattern* out) {
   std::string literal;
   auto placeholder = [&](int width) {
     if (++placeholders == 2 && strict)
-      fail("frame pattern '", pattern, "': more than one frame placeholder; exactly one of %d, %0Nd or #### allowed");
+      fail("frame pattern '", pattern, "': more than one frame placeholder; exactly one of %d, %0Nd, #### or $F/$FN allowed");
     if (out) {
       out->prefix = literal;
       out->width = width;
@@ -32,6 +32,23 @@ int scan(const std::string& pattern, bool strict, ParsedPattern* out) {
   };
   for (size_t i = 0; i < pattern.size();) {
     const char c = pattern[i];
+    if (c == '$' && i + 1 < pattern.size() && pattern[i + 1] == 'F') {
+      // Houdini's $F (unpadded) and $F2..$F9 (padded), as its file caches name frames; $FF, $FPS and the
+      // like are other variables, kept as text.
+      const size_t j = i + 2;
+      const bool digit = j < pattern.size() && pattern[j] >= '1' && pattern[j] <= '9';
+      const bool word = j < pattern.size() && (std::isalnum(static_cast<unsigned char>(pattern[j])) || pattern[j] == '_');
+      if (digit) {
+        placeholder(pattern[j] - '0');
+        i = j + 1;
+        continue;
+      }
+      if (!word) {
+        placeholder(0);
+        i = j;
+        continue;
+      }
+    }
     if (c == '#') {
       size_t j = i;
       while (j < pattern.size() && pattern[j] == '#') ++j;
@@ -71,7 +88,7 @@ int scan(const std::string& pattern, bool strict, ParsedPattern* out) {
   }
   if (out && placeholders > 0) out->suffix = literal;
   if (strict && placeholders == 0)
-    fail("frame pattern '", pattern, "': no frame placeholder; use %d, %0Nd (e.g. %04d) or #### for the frame number");
+    fail("frame pattern '", pattern, "': no frame placeholder; use %d, %0Nd (e.g. %04d), #### or Houdini's $F/$F4 for the frame number");
   return placeholders;
 }
 

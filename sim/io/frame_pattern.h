@@ -3,6 +3,7 @@
 //   %d     the frame number without padding
 //   %0Nd   zero-padded to at least N digits (N = 1..20)
 //   #...#  a run of N hashes: zero-padded to at least N digits
+//   $F     Houdini's frame variable: no padding; $FN (N = 1..9) zero-padded to at least N digits
 //   %%     a literal '%'
 // A pattern holds exactly one placeholder; any other '%' sequence is an error.
 #include <string>

@@ -9,6 +9,7 @@
 
 #include "sim/core/error.h"
 #include "sim/io/bgeo.h"
+#include "sim/io/houdini_geometry.h"
 #include "sim/io/io_bytes.h"
 #include "sim/io/ply.h"
 #include "sim/io/spume_cache.h"
@@ -17,17 +18,7 @@
 namespace spume {
 namespace {
 
-constexpr const char* kAllowed = ".bgeo, .bgeo.gz, .bhclassic, .bhclassic.gz, .vtk, .vtu, .vtp, .ply, .spf, .spd";
-
-constexpr const char* kHoudiniHint =
-    "export classic .bgeo or .bhclassic geometry from Houdini instead (see the README, Inputs)";
-
-// Houdini's binary JSON geometry starts 7F 'N' 'S' 'J' whatever the file is called.
-bool starts_with_newer_houdini_magic(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  char magic[4] = {};
-  return in.read(magic, 4) && std::string_view(magic, 4) == std::string_view("\x7fNSJ", 4);
-}
+constexpr const char* kAllowed = ".bgeo, .bgeo.gz, .bgeo.sc, .bhclassic, .bhclassic.gz, .vtk, .vtu, .vtp, .ply, .spf, .spd";
 
 void require_file(const std::filesystem::path& path) {
   std::error_code ec;
@@ -92,22 +83,54 @@ bool has_attribute(const std::vector<PointAttribute>& attrs, std::string_view na
   return std::any_of(attrs.begin(), attrs.end(), [&](const PointAttribute& a) { return a.name == name; });
 }
 
+std::string range_str(const Aabb& b) { return vec_str(b.min) + " .. " + vec_str(b.max); }
+
+void describe_houdini(std::ostringstream& out, const std::filesystem::path& path) {
+  HoudiniGeometryInfo info;
+  const FluidFrame frame = read_houdini_geometry(path, &info);
+  out << "  format: Houdini geometry, binary JSON" << (info.file_version.empty() ? "" : " (Houdini " + info.file_version + ")");
+  if (info.container == "gzip") out << ", gzip-compressed";
+  if (info.chunks > 0) out << ", Blosc-compressed in " << info.chunks << " chunk" << (info.chunks > 1 ? "s" : "");
+  out << ", " << info.json_bytes << " bytes of JSON\n";
+  out << "  points in the file: " << info.point_count << ", bounds " << bounds_str(info.point_bounds) << "\n";
+  if (info.primitive_count > 0)
+    out << "  primitives: " << info.primitive_count << (info.primitive_summary.empty() ? "" : " (" + info.primitive_summary + ")")
+        << ", not read (spume reads points)\n";
+  out << "  attributes: " << attribute_list(info.point_attributes) << "\n";
+  if (!info.velocity_attribute.empty())
+    out << "  velocity from '" << info.velocity_attribute << "', range over all points " << range_str(info.velocity_range) << "\n";
+  if (info.points_without_id > 0)
+    out << "  left out: " << info.points_without_id
+        << " points with a negative id (Houdini's -1: no id, e.g. a mesh merged into the cache); they are not particles\n";
+  if (info.info_bounds) {
+    const Aabb& b = *info.info_bounds;
+    const bool same = !info.point_bounds.empty() && b.min == info.point_bounds.min && b.max == info.point_bounds.max;
+    const bool inside = !info.point_bounds.empty() && (b.min.array() <= info.point_bounds.min.array()).all() &&
+                        (info.point_bounds.max.array() <= b.max.array()).all();
+    out << "  Houdini's info block: bounds " << bounds_str(b)
+        << (same ? " (the points' bounds: agree)" : inside ? " (holds the points; it includes the primitives)" :
+            " (DISAGREES with the points read)")
+        << "\n";
+  }
+  if (!info.info_attribute_ranges.empty()) out << "  Houdini's info block: attribute ranges " << info.info_attribute_ranges << "\n";
+  describe_fluid(out, frame);
+}
+
 }  // namespace
 
 ParticleFormat particle_format(const std::filesystem::path& path) {
   const std::string name = io::lower_file_name(path);
   using io::ends_with;
+  if (ends_with(name, ".bgeo.sc")) return ParticleFormat::HoudiniGeometry;
   if (ends_with(name, ".bgeo") || ends_with(name, ".bgeo.gz") || ends_with(name, ".bhclassic") ||
       ends_with(name, ".bhclassic.gz"))
-    return ParticleFormat::Bgeo;
+    return is_houdini_geometry(path) ? ParticleFormat::HoudiniGeometry : ParticleFormat::Bgeo;
   if (ends_with(name, ".vtk")) return ParticleFormat::VtkLegacy;
   if (ends_with(name, ".vtu") || ends_with(name, ".vtp")) return ParticleFormat::VtkXml;
   if (ends_with(name, ".ply")) return ParticleFormat::Ply;
   if (ends_with(name, ".spf")) return ParticleFormat::FluidCache;
   if (ends_with(name, ".spd")) return ParticleFormat::DiffuseCache;
-  if (ends_with(name, ".sc") || starts_with_newer_houdini_magic(path))
-    fail(path.string(), ": Houdini's newer compressed geometry format (.bgeo.sc, binary JSON) is not supported; ",
-         kHoudiniHint);
+  if (is_houdini_geometry(path)) return ParticleFormat::HoudiniGeometry;  // Houdini's binary JSON, any name
   fail(path.string(), ": unknown particle file extension '", path.extension().string(), "'; allowed ", kAllowed);
 }
 
@@ -115,13 +138,14 @@ FluidFrame read_fluid_file(const std::filesystem::path& path) {
   require_file(path);
   switch (particle_format(path)) {
     case ParticleFormat::Bgeo: return read_bgeo(path);
+    case ParticleFormat::HoudiniGeometry: return read_houdini_geometry(path);
     case ParticleFormat::VtkLegacy: return read_vtk(path);
     case ParticleFormat::VtkXml: return read_vtu(path);
     case ParticleFormat::Ply: return read_ply(path);
     case ParticleFormat::FluidCache: return read_fluid_cache(path);
     case ParticleFormat::DiffuseCache:
-      fail(path.string(), ": is a spume diffuse cache (.spd), not a fluid frame; fluid files are .bgeo, .vtk, .vtu, "
-           ".vtp, .ply or .spf");
+      fail(path.string(), ": is a spume diffuse cache (.spd), not a fluid frame; fluid files are .bgeo, .bgeo.sc, .vtk, "
+           ".vtu, .vtp, .ply or .spf");
   }
   fail(path.string(), ": unsupported particle format");
 }
@@ -149,6 +173,7 @@ std::string describe_particle_file(const std::filesystem::path& path) {
       }
       break;
     }
+    case ParticleFormat::HoudiniGeometry: describe_houdini(out, path); break;
     case ParticleFormat::VtkLegacy:
     case ParticleFormat::VtkXml:
     case ParticleFormat::Ply: {

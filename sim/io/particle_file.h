@@ -1,6 +1,8 @@
 #pragma once
 // One entry point for particle files of any supported format, chosen by extension.
-//   .bgeo .bgeo.gz .bhclassic .bhclassic.gz  classic BGEO (io/bgeo.h)
+//   .bgeo .bgeo.gz .bhclassic .bhclassic.gz  classic BGEO (io/bgeo.h), or, when the content is Houdini 12+
+//                                            binary JSON, Houdini geometry (io/houdini_geometry.h)
+//   .bgeo.sc                                  Houdini geometry, Blosc-compressed (io/houdini_geometry.h)
 //   .vtk                                      legacy VTK (io/vtk.h)
 //   .vtu .vtp                                 XML VTK (io/vtk.h)
 //   .ply                                      PLY (io/ply.h)
@@ -13,9 +15,10 @@
 
 namespace spume {
 
-enum class ParticleFormat { Bgeo, VtkLegacy, VtkXml, Ply, FluidCache, DiffuseCache };
+enum class ParticleFormat { Bgeo, HoudiniGeometry, VtkLegacy, VtkXml, Ply, FluidCache, DiffuseCache };
 
-// The format a file name implies; Error listing the allowed extensions otherwise.
+// The format a file name implies (a .bgeo's first bytes tell classic from binary JSON; any file starting
+// with Houdini's binary JSON magic is Houdini geometry); Error listing the allowed extensions otherwise.
 ParticleFormat particle_format(const std::filesystem::path& path);
 
 // Reads a fluid frame from any fluid format; the frame is validated (finite values, unique ids) with

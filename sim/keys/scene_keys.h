@@ -24,7 +24,7 @@ namespace fluid {
 inline constexpr KeySpec source{.path = "fluid.source", .type = Choice, .choices = "files|solver",
                                 .doc = "particle files, or spume's DFSPH solver"};
 inline constexpr KeySpec files{.path = "fluid.files", .type = Text, .default_text = "required with \"files\"",
-                               .doc = "particle file pattern (%d, %04d or ####), relative to the scene file"};
+                               .doc = "particle file pattern (%d, %04d, #### or $F, $F4), relative to the scene file"};
 inline constexpr KeySpec radius{.path = "fluid.radius", .unit = "m", .lo = 1e-5, .hi = 10, .lo_bound = Closed,
                                 .hi_bound = Closed, .default_text = "required",
                                 .doc = "the fluid particle radius r (the particles' spacing is 2 r)"};

@@ -84,9 +84,9 @@ void BM_SurfacePass(benchmark::State& state) {
   Camera cam;
   cam.position = Vec3f(1.1f, 1.4f, 3.6f), cam.target = Vec3f(1.1f, 0.2f, 0.9f), cam.fov_y_degrees = 50;
   cam.width = 1920, cam.height = 1080;
-  static SurfacePass pass1(SurfacePassOptions{.supersample = 1, .gl = {}}),
-      pass2(SurfacePassOptions{.supersample = 2, .gl = {}});
-  SurfacePass& pass = state.range(0) == 1 ? pass1 : pass2;
+  // One pass (and GL context) per run, destroyed within it: two static passes, destroyed at program
+  // exit, crashed the benchmark there (segfault after the results were printed).
+  SurfacePass pass(SurfacePassOptions{.supersample = int(state.range(0)), .gl = {}});
   SurfacePassStats stats;
   for (auto _ : state) benchmark::DoNotOptimize(pass.render(scene, cam, &stats));
   state.counters["triangles"] = double(stats.triangles);

@@ -27,7 +27,7 @@ struct Output {
 
 // Runs spume with stdout and stderr kept apart.
 Output spume(const std::string& arguments) {
-  const testing::CommandResult r = testing::run_spume(arguments, {.separate_stderr = true});
+  const testing::CommandResult r = testing::run_spume(arguments, testing::SpumeOptions::stderr_apart());
   return {r.status, r.output, r.err};
 }
 

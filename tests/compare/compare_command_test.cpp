@@ -243,7 +243,7 @@ TEST(CompareCommand, AnUnwritableReportFolderExitsTwoNamingIt) {
   write_png(dir / "b.png", flat_image(4, 4, 200));
   std::ofstream(dir / "plain_file") << "a file, so nothing can be created under it, not even by root\n";
   const fs::path out = dir / "plain_file" / "report";
-  for (const std::string& other : {"a.png", "b.png"}) {
+  for (const char* other : {"a.png", "b.png"}) {
     const CommandResult r = compare(q(dir / "a.png") + " " + q(dir / other) + " --out " + q(out));
     EXPECT_EQ(r.status, 2) << other << "\n" << r.output;
     EXPECT_NE(r.output.find("--out " + out.string() + ": cannot create the report folder (Not a directory)"),

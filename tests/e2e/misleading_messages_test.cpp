@@ -174,7 +174,7 @@ TEST_F(Messages, AGzipOfZerosFailsOnItsMagicWithBoundedMemory) {
   const fs::path zeros = dir / "zeros.bgeo.gz";
   write_gzip_of_zeros(zeros, "", 80);
   ASSERT_LT(fs::file_size(zeros), uint64_t(64) << 20);  // level-1 deflate of zeros: about 230:1
-  const CommandResult r = run_spume("info " + zeros.string(), {.before = "ulimit -v 1572864"});
+  const CommandResult r = run_spume("info " + zeros.string(), testing::SpumeOptions::after("ulimit -v 1572864"));
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_TRUE(contains(r.output, "not a BGEO file: first bytes are 0 0 0 0 0")) << r.output;
   EXPECT_LT(children_peak_mib(), 300.0);
@@ -188,7 +188,7 @@ TEST_F(Messages, AGzipOfZerosFailsOnItsMagicWithBoundedMemory) {
   const std::string plain = io::gunzip(io::read_file_bytes(valid), valid.string());
   const fs::path padded = dir / "padded.bgeo.gz";
   write_gzip_of_zeros(padded, plain, 80);
-  const CommandResult p = run_spume("info " + padded.string(), {.before = "ulimit -v 1572864"});
+  const CommandResult p = run_spume("info " + padded.string(), testing::SpumeOptions::after("ulimit -v 1572864"));
   EXPECT_EQ(p.status, 1) << p.output;
   EXPECT_TRUE(contains(p.output, "unexpected bytes after the end marker at offset " + std::to_string(plain.size())))
       << p.output;

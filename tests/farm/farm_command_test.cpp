@@ -25,7 +25,7 @@ using Result = spume::testing::CommandResult;  // output: stdout; err: stderr
 
 // Runs spume with stdout and stderr captured separately (both are pipes, not terminals).
 Result spume_apart(const std::string& arguments, const std::string& environment = "") {
-  return spume::testing::run_spume(arguments, {.separate_stderr = true, .environment = environment});
+  return spume::testing::run_spume(arguments, spume::testing::SpumeOptions::stderr_apart(environment));
 }
 
 int count_lines_starting(const std::string& text, const std::string& prefix) {

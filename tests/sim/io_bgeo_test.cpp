@@ -257,13 +257,16 @@ TEST(Bgeo, CorruptBytesGiveClearErrors) {
   EXPECT_NE(error_of([&] { read_bgeo(dup); }).find("1277 occurs more than once"), std::string::npos);
 }
 
-TEST(Bgeo, RejectsNewHoudiniFormatsWithAHint) {
+// The classic reader refuses Houdini's JSON geometries, saying what they are and what spume does with them
+// (the binary form is read as Houdini geometry through read_fluid_file, tested in io_houdini_test.cpp).
+TEST(Bgeo, RefusesHoudiniJsonGeometrySayingWhatItIs) {
   TempDir dir;
   for (const std::string& bytes : {std::string("\x7fNSJb\x01\x02\x03", 8), std::string("[\"fileversion\",\"19.5\"]"),
                                    std::string("  {\"fileversion\":1}")}) {
     const fs::path p = dir.write("new.bgeo", bytes);
     const std::string msg = error_of([&] { read_bgeo(p); });
-    EXPECT_NE(msg.find(".bhclassic"), std::string::npos) << msg;
+    EXPECT_NE(msg.find(bytes[0] == '\x7f' ? "read it as Houdini geometry" : "save it from Houdini as .bgeo or .bgeo.sc"),
+              std::string::npos) << msg;
     EXPECT_NE(msg.find(p.string()), std::string::npos) << msg;
     const fs::path gz = dir.write("new_gz.bgeo", io::gzip_compress(bytes));
     EXPECT_NE(error_of([&] { read_bgeo(gz); }).find("JSON"), std::string::npos);

@@ -74,20 +74,22 @@ TEST(IoParticleFile, ErrorsForUnknownExtensionMissingFileAndDiffuseCache) {
   EXPECT_TRUE(contains(error_of([&] { read_fluid_file(dir.path / "d.spd"); }), "not a fluid frame"));
 }
 
-TEST(IoParticleFile, NewerHoudiniGeometryIsRefusedWithTheExportHint) {
+// .bgeo.sc (any case) and Houdini's binary JSON under any name are Houdini geometry; when broken, reading
+// them names the file and what is wrong (the real files are read in io_houdini_test.cpp).
+TEST(IoParticleFile, HoudiniGeometryIsRecognisedAndBrokenFilesNamed) {
   TempDir dir;
-  const std::string hint = "Houdini's newer compressed geometry format (.bgeo.sc, binary JSON) is not supported; "
-                           "export classic .bgeo or .bhclassic";
   const fs::path sc = dir.write("f_1.bgeo.sc", "blosc blocks");
   const fs::path upper = dir.write("F_2.BGEO.SC", "blosc blocks");
-  const fs::path json = dir.write("f_3.hjson", std::string("\x7fNSJ[", 5));  // binary JSON, any name
+  const fs::path json = dir.write("f_3.hjson", std::string("\x7fNSJb[", 6));  // binary JSON, any name
   for (const fs::path& p : {sc, upper, json}) {
-    EXPECT_TRUE(contains(error_of([&] { particle_format(p); }), p.string() + ": " + hint)) << p;
-    EXPECT_TRUE(contains(error_of([&] { describe_particle_file(p); }), hint)) << p;
+    EXPECT_EQ(particle_format(p), ParticleFormat::HoudiniGeometry) << p;
+    const std::string msg = error_of([&] { describe_particle_file(p); });
+    EXPECT_TRUE(contains(msg, p.string() + ": ")) << msg;
+    EXPECT_TRUE(contains(msg, p == json ? "truncated" : "it must start with 'scf1'")) << msg;
   }
   // Other unknown files keep the list of extensions.
   const fs::path other = dir.write("f.xyz", "1 2 3");
-  EXPECT_FALSE(contains(error_of([&] { particle_format(other); }), "not supported")) << other;
+  EXPECT_TRUE(contains(error_of([&] { particle_format(other); }), "allowed .bgeo, .bgeo.gz, .bgeo.sc")) << other;
 }
 
 TEST(IoParticleFile, EmptyFramesAreReadAndNonFinitePositionsRejected) {

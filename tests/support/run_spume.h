@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <utility>
 
 #include "tests/support/run_command.h"
 
@@ -17,6 +18,21 @@ struct SpumeOptions {
   bool separate_stderr = false;  // stderr into `err` (through a file), stdout alone into `output`
   std::string environment;       // assignments put before the binary, e.g. "PATH=/nonexistent"
   std::string before;            // shell commands run first in the same shell, e.g. "ulimit -v 1572864"
+
+  // Named starting points (designated initialisers that skip members warn under -Wextra).
+  // stderr captured apart from stdout, with `environment` assignments put before the binary.
+  static SpumeOptions stderr_apart(std::string environment = "") {
+    SpumeOptions options;
+    options.separate_stderr = true;
+    options.environment = std::move(environment);
+    return options;
+  }
+  // Only `shell_commands` run first.
+  static SpumeOptions after(std::string shell_commands) {
+    SpumeOptions options;
+    options.before = std::move(shell_commands);
+    return options;
+  }
 };
 
 // `spume ARGUMENTS` (shell words: quote patterns such as 'cache/f_%d.bgeo'). By default stdout and

@@ -1,0 +1,80 @@
+#include "sim/io/houdini_scf.h"
+
+#include <blosc.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "sim/core/error.h"
+#include "sim/io/io_bytes.h"
+
+namespace spume {
+namespace {
+
+constexpr size_t kHeader = 12;          // "scf1" and 8 bytes
+constexpr size_t kTrailerFixed = 12;    // int64 index size and "1fcs"
+constexpr size_t kBloscHeader = BLOSC_MIN_HEADER_LENGTH;  // 16
+constexpr uint64_t kMaxExpansion = 1032;
+
+struct Chunk {
+  size_t offset, compressed, decompressed;
+};
+
+}  // namespace
+
+bool has_scf_magic(std::string_view file) { return file.substr(0, 4) == "scf1"; }
+
+std::string decompress_scf(std::string_view file, const std::string& where, ScfStats* stats) {
+  if (!has_scf_magic(file)) fail(where, ": not a .bgeo.sc file: it must start with 'scf1'");
+  if (file.size() < kHeader + kTrailerFixed)
+    fail(where, ": truncated: ", file.size(), " bytes, too short for a .bgeo.sc file (header and index alone take ",
+         kHeader + kTrailerFixed, ")");
+  if (file.substr(file.size() - 4) != "1fcs")
+    fail(where, ": truncated or corrupt: a .bgeo.sc file ends with its index and the bytes '1fcs', which are missing");
+  const uint64_t index_bytes = io::load<uint64_t>(file.data() + file.size() - kTrailerFixed, io::Endian::Big);
+  if (index_bytes % 8 != 0 || index_bytes > file.size() - kHeader - kTrailerFixed)
+    fail(where, ": corrupt: the index at the end claims ", index_bytes, " bytes in a file of ", file.size());
+  const size_t chunks_end = file.size() - kTrailerFixed - size_t(index_bytes);
+
+  // All chunk headers first: nothing is decompressed from a file whose chunks do not fit.
+  std::vector<Chunk> chunks;
+  uint64_t total = 0;
+  for (size_t pos = kHeader; pos < chunks_end;) {
+    if (chunks_end - pos < kBloscHeader)
+      fail(where, ": truncated or corrupt: ", chunks_end - pos, " bytes at offset ", pos,
+           " cannot hold a Blosc chunk header (16 bytes)");
+    const uint8_t version = uint8_t(file[pos]);
+    if (version == 0 || version > BLOSC_VERSION_FORMAT)
+      fail(where, ": corrupt: Blosc chunk at offset ", pos, " has format version ", int(version), "; allowed 1 to ",
+           BLOSC_VERSION_FORMAT);
+    size_t nbytes = 0, cbytes = 0, blocksize = 0;
+    blosc_cbuffer_sizes(file.data() + pos, &nbytes, &cbytes, &blocksize);
+    if (cbytes < kBloscHeader || cbytes > chunks_end - pos)
+      fail(where, ": truncated or corrupt: Blosc chunk at offset ", pos, " claims ", cbytes,
+           " compressed bytes; ", chunks_end - pos, " remain before the index");
+    chunks.push_back({pos, cbytes, nbytes});
+    total += nbytes;
+    pos += cbytes;
+  }
+  if (chunks.empty()) fail(where, ": corrupt: a .bgeo.sc file without Blosc chunks");
+  if (total > kMaxExpansion * file.size())
+    fail(where, ": corrupt: its Blosc chunks claim ", total, " decompressed bytes, more than ", kMaxExpansion,
+         " times the file's ", file.size());
+
+  std::string out(size_t(total), '\0');
+  size_t at = 0;
+  for (const Chunk& c : chunks) {
+    size_t checked = 0;
+    if (blosc_cbuffer_validate(file.data() + c.offset, c.compressed, &checked) != 0 || checked != c.decompressed)
+      fail(where, ": corrupt: Blosc chunk at offset ", c.offset, " has an inconsistent header");
+    const int got = blosc_decompress_ctx(file.data() + c.offset, out.data() + at, c.decompressed, 1);
+    if (got < 0 || size_t(got) != c.decompressed)
+      fail(where, ": corrupt: Blosc chunk at offset ", c.offset, " did not decompress (", got < 0 ? "error " : "got ",
+           got, got < 0 ? "" : str(" bytes of ", c.decompressed), ")");
+    at += c.decompressed;
+  }
+  if (stats) *stats = {chunks.size(), out.size()};
+  return out;
+}
+
+}  // namespace spume

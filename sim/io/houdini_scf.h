@@ -1,0 +1,27 @@
+#pragma once
+// Houdini's Blosc-compressed container (.bgeo.sc, "seekable compressed format"), as Houdini 18.5 writes
+// it (seen in real files, not from a specification):
+//   "scf1", 8 bytes (zero in every file seen), then Blosc chunks one after another (each with its own
+//   16-byte Blosc header giving its compressed and decompressed sizes), then an index: n 8-byte big-endian
+//   numbers, the int64 n*8 and the bytes "1fcs". The index tells where the chunks end; its numbers (chunk
+//   offsets and sizes, for seeking) are not needed to read the file front to back.
+#include <cstddef>
+#include <string>
+#include <string_view>
+
+namespace spume {
+
+struct ScfStats {
+  size_t chunks = 0;
+  size_t decompressed_bytes = 0;
+};
+
+bool has_scf_magic(std::string_view file);
+
+// The decompressed bytes. Every chunk header is checked before anything is decompressed: it must lie
+// inside the file, and all chunks together may declare no more than 1032 bytes per byte of the file
+// (Houdini's LZ4 chunks stay far below; deflate's bound); each chunk then decompresses to exactly what its
+// header declares. `where` names the file in errors.
+std::string decompress_scf(std::string_view file, const std::string& where, ScfStats* stats = nullptr);
+
+}  // namespace spume
