@@ -1,9 +1,9 @@
 #include "render/gl/surface_pass.h"
 
-#include <chrono>
 #include <cmath>
 
 #include "sim/core/error.h"
+#include "sim/core/stopwatch.h"
 #include "render/gl/surface_gpu.h"
 
 namespace spume {
@@ -11,24 +11,19 @@ namespace {
 
 constexpr float kInf = INFINITY;
 
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
 // Times the stages: GL queues its work, so each lap first waits for it (glFinish); otherwise a stage's
 // cost would be counted in whichever later stage happens to wait.
 class StageClock {
  public:
   double lap() {
     glFinish();
-    const Clock::time_point now = Clock::now();
-    const double dt = std::chrono::duration<double>(now - last_).count();
-    last_ = now;
+    const double dt = since_last_.seconds();
+    since_last_.restart();
     return dt;
   }
 
  private:
-  Clock::time_point last_ = Clock::now();
+  Stopwatch since_last_;
 };
 
 }  // namespace
@@ -52,11 +47,11 @@ SurfacePass::SurfacePass(const SurfacePassOptions& options) : options_(options) 
 SurfacePass::~SurfacePass() = default;
 
 SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera, SurfacePassStats* stats) {
-  const Clock::time_point start = Clock::now();
+  const Stopwatch stopwatch;
   SurfacePassStats st;
   SurfaceImage out =
       scene.shows_geometry() ? render_gl(scene, camera, st) : render_background(scene.environment, camera);
-  st.seconds = seconds_since(start);
+  st.seconds = stopwatch.seconds();
   if (stats) *stats = st;
   return out;
 }

@@ -22,13 +22,17 @@ inline float cubic_spline_slope(float q, float q2) {
 
 // The kernel for one support radius h.
 struct CubicSpline {
+  // The 3D normalisation's numerator: sigma = 8 / (pi h^3). Callers that fold sigma into their own
+  // factors (the diffuse normals, the solids' coverage) read it here.
+  static constexpr float kSigmaNumerator = 8.0f;
+
   float h = 1.0f, h2 = 1.0f, inv_h = 1.0f;
   float sigma = 0.0f;       // 8 / (pi h^3)
   float grad_sigma = 0.0f;  // 48 / (pi h^5): the common factor of dW/dr / r
 
   explicit CubicSpline(float support)
       : h(support), h2(support * support), inv_h(1.0f / support),
-        sigma(8.0f / (std::numbers::pi_v<float> * support * support * support)),
+        sigma(kSigmaNumerator / (std::numbers::pi_v<float> * support * support * support)),
         grad_sigma(6.0f * sigma / (support * support)) {}
 
   float value_at_zero() const { return sigma; }

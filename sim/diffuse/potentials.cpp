@@ -56,7 +56,7 @@ void compute_normals(const NeighbourGrid& grid, float particle_volume, const Dif
   const float max_neighbours = params.surface_neighbour_fraction * full;
   // grad c = V sum_j dW/dr (x_i - x_j)/r = V sigma/h^5 sum_j (f'(q)/q) (x_i - x_j), with the cubic
   // spline W = sigma/h^3 f(q), q = r/h, sigma = 8/pi (core/cubic_spline.h).
-  const float scale = particle_volume * 8.0f / (std::numbers::pi_v<float> * h * h * h * h * h);
+  const float scale = particle_volume * CubicSpline::kSigmaNumerator / (std::numbers::pi_v<float> * h * h * h * h * h);
   normals.assign(points.size(), Vec3f::Zero());
   for_each_cell_block(grid, {}, [&](uint32_t begin, uint32_t end, const BlockBuffer& block) {
     const size_t m = block.size();

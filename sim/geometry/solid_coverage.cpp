@@ -6,12 +6,14 @@
 #include <limits>
 #include <numbers>
 
+#include "sim/core/cubic_spline.h"
+
 namespace spume {
 namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
 constexpr float kInf = std::numeric_limits<float>::infinity();
-constexpr float kSigma = 8.0f / kPi;  // cubic spline: W(r) = sigma / h^3 f(r / h)
+constexpr float kSigma = CubicSpline::kSigmaNumerator / kPi;  // cubic spline: W(r) = sigma / h^3 f(r / h)
 
 // Spherical Fibonacci points: nearly equal areas, so every direction carries the weight 4 pi / N.
 const std::array<Vec3f, kCoverageDirections>& directions() {

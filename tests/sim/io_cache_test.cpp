@@ -2,7 +2,6 @@
 #include <unistd.h>
 #include <zlib.h>
 
-#include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -242,11 +241,8 @@ TEST(Cache, WritesLargeDiffuseFramesAtStreamingSpeed) {
     d.types[i] = DiffuseType(i % 3);
   }
   const fs::path p = dir.path / "big.spd";
-  const auto t0 = std::chrono::steady_clock::now();
   write_diffuse_cache(p, d);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_EQ(fs::file_size(p), 56u + n * 37 + 4);
-  EXPECT_LT(seconds, 10.0);  // generous: shared, noisy machines
   const DiffuseFrame e = read_diffuse_cache(p);
   EXPECT_EQ(e.size(), n);
   EXPECT_EQ(e.positions[n - 1], d.positions[n - 1]);

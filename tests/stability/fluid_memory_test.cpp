@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -101,25 +100,21 @@ TEST(StabilityFluidMemory, RefusalNamesTheCountsTheEstimateAndTheAvailableMemory
   EXPECT_GT(*available, 1.0e6);
 }
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-// 1e12 particles (a 100 m cube at r = 5 mm): more than any machine has, refused at once.
-TEST(StabilityFluidMemory, AnAbsurdBlockIsRefusedWithinASecond) {
+// 1e12 particles (a 100 m cube at r = 5 mm): more than any machine has, refused from the estimate, before
+// anything is allocated (allocating first would end in std::bad_alloc, which error_of does not take).
+TEST(StabilityFluidMemory, AnAbsurdBlockIsRefusedBeforeAnythingIsAllocated) {
   FluidSolverParams p;
   p.particle_radius = 0.005f;
-  const auto t0 = std::chrono::steady_clock::now();
   const std::string message = error_of([&] {
     FluidSolver solver(p, {{Vec3f(0, 0, 0), Vec3f(100, 100, 100)}}, SolidSet({tank(Vec3f(100, 120, 100))}));
   });
-  EXPECT_LT(seconds_since(t0), 1.0);
   EXPECT_NE(message.find("1e+12 fluid particles"), std::string::npos) << message;
   EXPECT_NE(message.find("is available"), std::string::npos) << message;
 }
 
-// A user's case, 1.25e8 particles (a 10 m cube at r = 1 cm, estimated 288 GB), through the binary.
-TEST(StabilityFluidMemory, ATenMetreCubeAtOneCentimetreIsRefusedWithinASecondWhereItCannotFit) {
+// A user's case, 1.25e8 particles (a 10 m cube at r = 1 cm, estimated 288 GB), through the binary, under
+// a 4 GiB address-space limit: refused from the estimate, not by running out of memory part way.
+TEST(StabilityFluidMemory, ATenMetreCubeAtOneCentimetreIsRefusedBeforeAllocatingWhereItCannotFit) {
   FluidSolverParams p;
   p.particle_radius = 0.01f;
   const std::vector<FluidBlock> blocks = {{Vec3f(0, 0, 0), Vec3f(10, 10, 10)}};
@@ -130,10 +125,9 @@ TEST(StabilityFluidMemory, ATenMetreCubeAtOneCentimetreIsRefusedWithinASecondWhe
   const std::filesystem::path& dir = temp.path;
   std::ofstream(dir / "big.json") << R"({"name": "big", "fluid": {"source": "solver", "radius": 0.01,
     "blocks": [{"min": [0, 0, 0], "max": [10, 10, 10]}]}})";
-  const auto t0 = std::chrono::steady_clock::now();
   const testing::CommandResult r =
-      testing::run_spume("simulate " + (dir / "big.json").string() + " --out " + (dir / "out").string());
-  EXPECT_LT(seconds_since(t0), 1.0);
+      testing::run_spume("simulate " + (dir / "big.json").string() + " --out " + (dir / "out").string(),
+                         testing::SpumeOptions::after("ulimit -v 4194304"));
   EXPECT_EQ(r.status, 1) << r.output;
   for (const char* part : {"125000000 fluid particles", "GB of memory", "is available"})
     EXPECT_NE(r.output.find(part), std::string::npos) << part << " not in: " << r.output;
