@@ -39,6 +39,7 @@ const SolidSet& DiffuseSimulator::solids_at(double t, SolidSet& slot) const {
 }
 
 void DiffuseSimulator::prepare_fluid(double t) {
+  StageTimer timer(pending_, Stage::Grid);  // fluid preparation, reported with the grid
   step_params_ = setup_.params;
   step_volume_ = particle_volume_;
   float ratio = 1.0f;
