@@ -1,6 +1,7 @@
 #pragma once
 // The diffuse simulator: a post-process that steps diffuse particles through a fluid sequence.
-// Per step (MODEL.md): neighbour grid over the fluid at t -> classify every diffuse particle and
+// Per step (MODEL.md): the fluid at t prepared (FLIP velocities and density, a narrow band filled: §9)
+// -> neighbour grid over it -> classify every diffuse particle and
 // sample the fluid velocity at it (§3, §4) -> formation potentials and emission (§1, §2) -> advection
 // per type, solids, domain, dissolution (§4, §5, §8) -> compaction in cell order.
 #include <array>
