@@ -1,6 +1,7 @@
 #include "sim/diffuse/simulator.h"
 
 #include <atomic>
+#include <cmath>
 
 #include "sim/core/error.h"
 #include "sim/core/parallel.h"
@@ -37,6 +38,26 @@ const SolidSet& DiffuseSimulator::solids_at(double t, SolidSet& slot) const {
   return slot;
 }
 
+void DiffuseSimulator::prepare_fluid(double t) {
+  StageTimer timer(pending_, Stage::Grid);  // fluid preparation, reported with the grid
+  step_params_ = setup_.params;
+  step_volume_ = particle_volume_;
+  float ratio = 1.0f;
+  if (setup_.particles == FluidParticles::Flip) {
+    const FlipMeasure m = flip_.prepare(state_, setup_.fluid.particle_radius, setup_.fluid.support_radius);
+    ratio = m.density_ratio;
+    step_params_ = at_density(setup_.params, ratio);
+    step_volume_ = particle_volume_ / ratio;
+    pending_.density_ratio = ratio, pending_.full_count = m.full_count;
+  }
+  if (setup_.fill_narrow_band) {
+    // Fill at the frame's own spacing; cells of h hold about 8 particles each in the water.
+    const float spacing = 2.0f * setup_.fluid.particle_radius / std::cbrt(ratio);
+    const SolidSet& solids = solids_at(t, classify_solids_);
+    pending_.interior = filler_.fill(state_, setup_.fluid.support_radius, spacing, setup_.params.gravity, &solids);
+  }
+}
+
 void DiffuseSimulator::classify(const FluidStepState& state, uint32_t step, bool sample_velocity, double t) {
   {
     StageTimer timer(pending_, Stage::Grid);
@@ -49,7 +70,7 @@ void DiffuseSimulator::classify(const FluidStepState& state, uint32_t step, bool
   }
   StageTimer timer(pending_, Stage::Classify);
   sample_fluid(grid_, sorted_motion_, particles_.positions, samples_);
-  const DiffuseParams& p = setup_.params;
+  const DiffuseParams& p = step_params_;
   const SolidSet& solids = solids_at(t, classify_solids_);
   solids_now_ = &solids;
   const bool count_solids = p.count_solids && !solids.empty();
@@ -81,7 +102,7 @@ void DiffuseSimulator::classify(const FluidStepState& state, uint32_t step, bool
 }
 
 void DiffuseSimulator::step(const FluidStepState& state, uint32_t step, float dt, double t_end) {
-  const DiffuseParams& p = setup_.params;
+  const DiffuseParams& p = step_params_;
   const size_t old_count = particles_.size();
   // Positions after the step belong to t_end: keep them out of the solids as they stand then,
   // relative to each wall's velocity then.
@@ -130,7 +151,7 @@ void DiffuseSimulator::step(const FluidStepState& state, uint32_t step, float dt
   if (p.k_ta > 0.0f || p.k_wc > 0.0f) {
     {
       StageTimer timer(pending_, Stage::Potentials);
-      compute_potentials(grid_, state, p, particle_volume_, solids_now_, potentials_);
+      compute_potentials(grid_, state, p, step_volume_, solids_now_, potentials_);
     }
     StageTimer timer(pending_, Stage::Emit);
     // The budget counts the particles that survive this step.
@@ -198,6 +219,7 @@ FrameStats DiffuseSimulator::process_frame(const FluidFrame& a, const FluidFrame
 
   // Frame a's output: the particles where they are, classified against a's fluid.
   interpolate_fluid(pair, 0.0f, mass, state_);
+  prepare_fluid(a.time);
   classify(state_, uint32_t(first_step), b != nullptr, a.time);
   particles_.index = a.index;
   particles_.time = a.time;
@@ -216,7 +238,9 @@ FrameStats DiffuseSimulator::process_frame(const FluidFrame& a, const FluidFrame
     const uint32_t step_index = uint32_t(first_step + s);
     if (s > 0) {
       interpolate_fluid(pair, float(s) / float(p.substeps), mass, state_);
-      classify(state_, step_index, true, a.time + frame_dt * s / p.substeps);
+      const double t = a.time + frame_dt * s / p.substeps;
+      prepare_fluid(t);
+      classify(state_, step_index, true, t);
     }
     step(state_, step_index, dt, s + 1 == p.substeps ? b->time : a.time + frame_dt * (s + 1) / p.substeps);
   }

@@ -1,6 +1,7 @@
 #pragma once
 // The diffuse simulator: a post-process that steps diffuse particles through a fluid sequence.
-// Per step (MODEL.md): neighbour grid over the fluid at t -> classify every diffuse particle and
+// Per step (MODEL.md): the fluid at t prepared (FLIP velocities and density, a narrow band filled: §9)
+// -> neighbour grid over it -> classify every diffuse particle and
 // sample the fluid velocity at it (§3, §4) -> formation potentials and emission (§1, §2) -> advection
 // per type, solids, domain, dissolution (§4, §5, §8) -> compaction in cell order.
 #include <array>
@@ -10,7 +11,9 @@
 #include "sim/core/frames.h"
 #include "sim/diffuse/emission.h"
 #include "sim/diffuse/fluid_sampling.h"
+#include "sim/diffuse/flip_fluid.h"
 #include "sim/diffuse/fluid_state.h"
+#include "sim/diffuse/narrow_band.h"
 #include "sim/diffuse/params.h"
 #include "sim/diffuse/potentials.h"
 #include "sim/grid/neighbour_grid.h"
@@ -34,7 +37,13 @@ struct FrameStats {
   uint64_t capped = 0;      // asked for by Eq. 8 beyond 4,095 per fluid particle and step, never sampled
   std::array<double, size_t(Stage::Count)> stage_ms{};
   std::string unpaired_because;  // why this frame's particles were not paired with the next's ("" if paired)
+  InteriorFill interior;         // this frame's narrow-band test and fill (MODEL.md §9.1)
+  float density_ratio = 1.0f;    // fluid.particles = flip: this frame's particle density / the nominal (§9.2)
+  float full_count = 0.0f;       // ... the count of a full neighbourhood it was measured from
 };
+
+// What the cached particles are (fluid.particles).
+enum class FluidParticles { Sph, Flip };
 
 struct DiffuseSetup {
   DiffuseParams params;
@@ -42,6 +51,8 @@ struct DiffuseSetup {
   SolidSet solids;
   BodyTrack bodies;  // poses of the dynamic solids (empty: they stay at their initial pose)
   Aabb domain;  // diffuse particles outside are deleted; empty box = no limit
+  FluidParticles particles = FluidParticles::Sph;  // flip: smoothed velocities, counts at the frame's density
+  bool fill_narrow_band = true;                    // fluid.narrow_band = auto: fill an enclosed empty interior
 };
 
 class DiffuseSimulator {
@@ -64,6 +75,9 @@ class DiffuseSimulator {
   // particle, types (with the solids as they stand at t). step(): advection, solids at t + dt,
   // dissolution, emission, compaction over [t, t + dt].
   void classify(const FluidStepState& state, uint32_t step, bool sample_velocity, double t);
+  // After each interpolation: FLIP velocities and density (§9.2), the narrow band's fill (§9.1), and
+  // the parameters of this step.
+  void prepare_fluid(double t);
   void step(const FluidStepState& state, uint32_t step, float dt, double t_end);
   // The solids at time t: the set as given when nothing moves, else a snapshot kept in `slot`.
   const SolidSet& solids_at(double t, SolidSet& slot) const;
@@ -84,6 +98,10 @@ class DiffuseSimulator {
   FrameStats pending_;  // accumulates between frames
   const SolidSet* solids_now_ = nullptr;  // the solids at the time of the last classify()
   float particle_volume_;
+  FlipFluid flip_;
+  InteriorFiller filler_;
+  DiffuseParams step_params_;   // setup_.params, at the frame's density for a FLIP cache
+  float step_volume_ = 0.0f;    // particle_volume_, likewise
 };
 
 }  // namespace spume

@@ -53,6 +53,14 @@ inline constexpr KeySpec velocity_scale{
     .path = "fluid.velocity_scale", .value = {1}, .lo = 0, .hi = 1e6, .lo_bound = Open, .hi_bound = Closed,
     .doc = "files: factor on the stored velocities, for caches in other units (the log measures them against "
            "the motion)"};
+inline constexpr KeySpec particles{
+    .path = "fluid.particles", .type = Choice, .choices = "sph|flip",
+    .doc = "what the cached particles are: sph (the paper's model as is) or flip (velocities averaged over 2 h "
+           "for the potentials, counts measured against the frame's own particle density; MODEL.md §9)"};
+inline constexpr KeySpec narrow_band{
+    .path = "fluid.narrow_band", .type = Choice, .choices = "auto|off",
+    .doc = "auto: a frame whose particles enclose a large empty interior (a FLIP cache that keeps only a band "
+           "near the surface) is filled there for classification and advection (MODEL.md §9); off: taken as is"};
 inline constexpr KeySpec blocks{.path = "fluid.blocks", .type = List, .default_text = "required with \"solver\"",
                                 .doc = "solver: the initial fluid, cuboids filled on a lattice of spacing 2 r"};
 inline constexpr KeySpec block_min{.path = "fluid.blocks[].min", .type = Vec3, .unit = "m", .lo = -1e6, .hi = 1e6,
@@ -62,7 +70,7 @@ inline constexpr KeySpec block_max{.path = "fluid.blocks[].max", .type = Vec3, .
                                    .lo_bound = Closed, .hi_bound = Closed, .default_text = "required",
                                    .doc = "a block's upper corner, above min on every axis"};
 inline constexpr auto all = std::to_array<const KeySpec*>(
-    {&source, &files, &radius, &support_radius, &fps, &rest_density, &frames, &allow_gaps, &velocity_scale, &blocks,
+    {&source, &files, &radius, &support_radius, &fps, &rest_density, &frames, &allow_gaps, &velocity_scale, &particles, &narrow_band, &blocks,
      &block_min, &block_max});
 }  // namespace fluid
 

@@ -2,8 +2,10 @@
 
 #include <cstdio>
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <numbers>
 
 #include "sim/pipeline/body_track_file.h"
 #include "sim/pipeline/cache_state.h"
@@ -179,6 +181,8 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
   setup.solids = inputs.solids;
   setup.bodies = scene_body_track(scene, summary.out_dir);
   setup.domain = inputs.domain;
+  setup.particles = scene.flip_particles ? FluidParticles::Flip : FluidParticles::Sph;
+  setup.fill_narrow_band = scene.fill_narrow_band;
   DiffuseSimulator simulator(setup);
   if (resume > 0) simulator.set_particles(read_diffuse_cache(diffuse_cache_path(summary.out_dir, frames[resume])));
 
@@ -194,6 +198,10 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
   bool warned_budget = false, warned_cap = false;
   int domain_warnings = 0;  // frames that lost more than 1% of what they emitted to the domain
   int unpaired_frames = 0;  // frames without ids whose particles could not be paired with the next's
+  int band_frames = 0;      // frames found to be a narrow band and filled (MODEL.md §9.1)
+  size_t most_filled = 0;
+  bool warned_band_skip = false;
+  float least_density = 0.0f, most_density = 0.0f;  // fluid.particles = flip: the measured density ratios
   for (size_t k = resume; k < frames.size(); ++k) {
     std::optional<FluidFrame> next;
     if (k + 1 < frames.size())
@@ -223,6 +231,32 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
     const FrameStats stats = with_context(str("frame ", frames[k]), [&] {
       return simulator.process_frame(current, next ? &*next : nullptr, write_frame);
     });
+    if (stats.interior.narrow_band) {
+      most_filled = std::max(most_filled, stats.interior.filled);
+      if (++band_frames == 1)
+        progress.message(str("frame ", stats.frame, ": the fluid particles enclose an empty interior of ",
+                             stats.interior.enclosed_cells, " cells of h beside ", stats.interior.occupied_cells,
+                             " occupied (a narrow-band cache: FLIP keeps particles only near the surface); filled with ",
+                             stats.interior.filled, " massless particles for classification and advection "
+                             "(MODEL.md §9.1; fluid.narrow_band = off leaves it empty)"));
+    }
+    if (stats.interior.skipped && !warned_band_skip) {
+      progress.message(str("note: frame ", stats.frame, "'s particles spread over more than 16M cells of h; "
+                           "such frames are not tested for an empty interior (MODEL.md §9.1)"));
+      warned_band_skip = true;
+    }
+    if (scene.flip_particles) {
+      if (k == resume)
+        progress.message(str("fluid.particles = flip: velocities averaged over ", kVelocitySmoothing, " h for the "
+                             "potentials; frame ", stats.frame, " holds ", stats.full_count, " particles in a full "
+                             "neighbourhood (", stats.density_ratio, "x the nominal ",
+                             4.0 / 3.0 * std::numbers::pi *
+                                 std::pow(double(scene.fluid.support_radius) / (2.0 * scene.fluid.particle_radius), 3.0),
+                             " at a spacing of 2r), counts and "
+                             "rates taken at that density (MODEL.md §9.2)"));
+      least_density = k == resume ? stats.density_ratio : std::min(least_density, stats.density_ratio);
+      most_density = std::max(most_density, stats.density_ratio);
+    }
     if (!stats.unpaired_because.empty() && ++unpaired_frames == 1)
       progress.message(str("warning: the fluid frames carry no particle ids, and from frame ", stats.frame, " to ",
                            frames[k + 1], " ", stats.unpaired_because, ": particles are not paired by index there; ",
@@ -250,6 +284,12 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
                     str(stats.by_type[0], " spray ", stats.by_type[1], " foam ", stats.by_type[2], " bubbles"));
     if (next) current = std::move(*next);
   }
+  if (band_frames > 0)
+    progress.message(str("  (", band_frames, " of ", frames.size() - resume, " frames were a narrow band, filled "
+                         "with up to ", most_filled, " particles)"));
+  if (scene.flip_particles)
+    progress.message(str("  (fluid.particles = flip: particle density ", least_density, " to ", most_density,
+                         "x the nominal over the frames)"));
   if (unpaired_frames > 1)
     progress.message(str("  (", unpaired_frames, " of ", frames.size() - 1 - resume,
                          " frame intervals left their particles unpaired)"));

@@ -40,6 +40,8 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
                                         scene.fluid.particle_radius, "; the usual choice is 4 x radius"));
   scene.fluid.fps = fluid.number(k::fluid::fps);
   scene.fluid.rest_density = float(fluid.number(k::fluid::rest_density));
+  scene.flip_particles = fluid.choice(k::fluid::particles) == "flip";
+  scene.fill_narrow_band = fluid.choice(k::fluid::narrow_band) == "auto";
   if (scene.source == FluidSourceKind::Files) {
     const auto files = fluid.optional_text(k::fluid::files.name());
     if (!files) fluid.fail_at("files", "missing: a file pattern such as \"cache/ParticleData_Fluid_%d.bgeo\"");

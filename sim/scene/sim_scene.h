@@ -28,6 +28,8 @@ struct SimScene {
   std::string file_pattern;             // Files: resolved against the scene file's folder
   bool allow_gaps = false;              // Files: frames missing between files are interpolated
   float velocity_scale = 1.0f;          // Files: factor on the stored velocities (caches in other units)
+  bool flip_particles = false;          // fluid.particles = flip (MODEL.md §9.2)
+  bool fill_narrow_band = true;         // fluid.narrow_band = auto (MODEL.md §9.1)
   FluidSequenceInfo fluid;
   std::optional<std::pair<int, int>> frames;  // inclusive frame range to use, if limited
   Vec3f gravity = Vec3f(0.0f, -9.81f, 0.0f);  // m/s^2

@@ -1,0 +1,222 @@
+#include "sim/diffuse/narrow_band.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "sim/core/parallel.h"
+
+namespace spume {
+namespace {
+
+enum Kind : uint8_t { Empty, Occupied, Blocked, Air, Enclosed, Extrapolated, Queued };
+
+// Beyond this many cells the frame is not examined (a dense grid of it would take too much memory).
+constexpr size_t kMaxCells = size_t(1) << 24;
+
+struct Lattice {
+  std::array<int64_t, 3> dims{};
+  size_t index(int64_t x, int64_t y, int64_t z) const { return size_t((z * dims[1] + y) * dims[0] + x); }
+  std::array<int64_t, 3> coords(size_t i) const {
+    const int64_t x = int64_t(i) % dims[0], y = (int64_t(i) / dims[0]) % dims[1], z = int64_t(i) / (dims[0] * dims[1]);
+    return {x, y, z};
+  }
+  bool in(int64_t x, int64_t y, int64_t z) const {
+    return x >= 0 && y >= 0 && z >= 0 && x < dims[0] && y < dims[1] && z < dims[2];
+  }
+};
+
+constexpr std::array<std::array<int, 3>, 6> kFaces = {{{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}}};
+
+}  // namespace
+
+InteriorFill InteriorFiller::fill(FluidStepState& state, float cell, float spacing, const Vec3f& gravity,
+                                  const SolidSet* solids) {
+  InteriorFill result;
+  const size_t n = state.positions.size();
+  if (n == 0 || !(cell > 0.0f) || !(spacing > 0.0f)) return result;
+  spacing = std::min(spacing, cell);
+
+  Vec3f lo = state.positions[0], hi = lo;
+  for (const Vec3f& p : state.positions) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const Vec3f origin = lo - Vec3f::Constant(cell);  // one empty layer of padding on every side
+  Lattice g;
+  double total = 1.0;
+  for (int a = 0; a < 3; ++a) {
+    g.dims[a] = int64_t(std::floor((hi[a] - lo[a]) / cell)) + 3;
+    total *= double(g.dims[a]);
+  }
+  if (total > double(kMaxCells)) {
+    result.skipped = true;
+    return result;
+  }
+  const size_t cells = size_t(total);
+
+  // Particles by cell (counting sort, in index order within a cell).
+  cell_of_.resize(n);
+  parallel_for(n, 1 << 14, [&](size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) {
+      std::array<int64_t, 3> c;
+      for (int a = 0; a < 3; ++a)
+        c[a] = std::clamp(int64_t(std::floor((state.positions[i][a] - origin[a]) / cell)), int64_t(1), g.dims[a] - 2);
+      cell_of_[i] = uint32_t(g.index(c[0], c[1], c[2]));
+    }
+  });
+  start_.assign(cells + 1, 0);
+  for (size_t i = 0; i < n; ++i) ++start_[cell_of_[i] + 1];
+  for (size_t c = 0; c < cells; ++c) start_[c + 1] += start_[c];
+  members_.resize(n);
+  {
+    std::vector<uint32_t> fill_at(start_.begin(), start_.end() - 1);
+    for (size_t i = 0; i < n; ++i) members_[fill_at[cell_of_[i]]++] = uint32_t(i);
+  }
+
+  // Kinds: occupied, inside a solid, the padding (walls, except the layer above, where the air is).
+  kind_.assign(cells, Empty);
+  int up_axis = -1, up_sign = 0;
+  if (gravity.squaredNorm() > 0.0f) {
+    gravity.cwiseAbs().maxCoeff(&up_axis);
+    up_sign = gravity[up_axis] < 0.0f ? 1 : -1;
+  }
+  const bool see_solids = solids && !solids->empty();
+  parallel_for(cells, 4096, [&](size_t b, size_t e) {
+    for (size_t c = b; c < e; ++c) {
+      if (start_[c + 1] > start_[c]) {
+        kind_[c] = Occupied;
+        continue;
+      }
+      const auto xyz = g.coords(c);
+      bool padding = false, top = false;
+      for (int a = 0; a < 3; ++a) {
+        const bool low = xyz[a] == 0, high = xyz[a] == g.dims[a] - 1;
+        padding |= low || high;
+        if (a == up_axis) top |= up_sign > 0 ? high : low;
+      }
+      if (padding && up_axis < 0) kind_[c] = Air;
+      else if (top) kind_[c] = Air;
+      else if (padding) kind_[c] = Blocked;
+      else if (see_solids) {
+        const Vec3f index_centre(float(xyz[0]) + 0.5f, float(xyz[1]) + 0.5f, float(xyz[2]) + 0.5f);
+        const Vec3f centre = origin + index_centre * cell;
+        if (solids->inside(centre)) kind_[c] = Blocked;
+      }
+    }
+  });
+
+  // Flood fill from the air through empty cells (6-connected).
+  queue_.clear();
+  for (size_t c = 0; c < cells; ++c)
+    if (kind_[c] == Air) queue_.push_back(uint32_t(c));
+  for (size_t q = 0; q < queue_.size(); ++q) {
+    const auto xyz = g.coords(queue_[q]);
+    for (const auto& f : kFaces) {
+      const int64_t x = xyz[0] + f[0], y = xyz[1] + f[1], z = xyz[2] + f[2];
+      if (!g.in(x, y, z)) continue;
+      const size_t nb = g.index(x, y, z);
+      if (kind_[nb] == Empty) kind_[nb] = Air, queue_.push_back(uint32_t(nb));
+    }
+  }
+  for (size_t c = 0; c < cells; ++c) {
+    result.occupied_cells += kind_[c] == Occupied;
+    if (kind_[c] == Empty) kind_[c] = Enclosed, ++result.enclosed_cells;
+  }
+  result.narrow_band = result.enclosed_cells >= kNarrowBandMinCells &&
+                       double(result.enclosed_cells) >= kNarrowBandShare * double(result.occupied_cells);
+  if (!result.narrow_band) return result;
+
+  // Velocities: each occupied cell's mean, carried into the enclosed cells layer by layer (each
+  // layer the mean of its 6-neighbours already set), so every filled cell gets the nearest water's.
+  cell_velocity_.assign(cells, Vec3f::Zero());
+  cell_motion_.assign(cells, Vec3f::Zero());
+  parallel_for(cells, 4096, [&](size_t b, size_t e) {
+    for (size_t c = b; c < e; ++c) {
+      if (kind_[c] != Occupied) continue;
+      Vec3f v = Vec3f::Zero(), m = Vec3f::Zero();
+      for (uint32_t k = start_[c]; k < start_[c + 1]; ++k) v += state.velocities[members_[k]], m += state.motion[members_[k]];
+      const float inv = 1.0f / float(start_[c + 1] - start_[c]);
+      cell_velocity_[c] = v * inv, cell_motion_[c] = m * inv;
+    }
+  });
+  auto known = [&](size_t c) { return kind_[c] == Occupied || kind_[c] == Extrapolated; };
+  queue_.clear();
+  for (size_t c = 0; c < cells; ++c) {
+    if (kind_[c] != Enclosed) continue;
+    const auto xyz = g.coords(c);
+    for (const auto& f : kFaces)
+      if (kind_[g.index(xyz[0] + f[0], xyz[1] + f[1], xyz[2] + f[2])] == Occupied) {
+        kind_[c] = Queued, queue_.push_back(uint32_t(c));
+        break;
+      }
+  }
+  std::vector<uint32_t> next;
+  std::vector<Vec3f> layer_v, layer_m;
+  while (!queue_.empty()) {
+    layer_v.assign(queue_.size(), Vec3f::Zero());
+    layer_m.assign(queue_.size(), Vec3f::Zero());
+    for (size_t q = 0; q < queue_.size(); ++q) {
+      const auto xyz = g.coords(queue_[q]);
+      int count = 0;
+      for (const auto& f : kFaces) {
+        const size_t nb = g.index(xyz[0] + f[0], xyz[1] + f[1], xyz[2] + f[2]);  // padding keeps it inside
+        if (known(nb)) layer_v[q] += cell_velocity_[nb], layer_m[q] += cell_motion_[nb], ++count;
+      }
+      if (count > 0) layer_v[q] /= float(count), layer_m[q] /= float(count);
+    }
+    next.clear();
+    for (size_t q = 0; q < queue_.size(); ++q) {
+      const uint32_t c = queue_[q];
+      cell_velocity_[c] = layer_v[q], cell_motion_[c] = layer_m[q], kind_[c] = Extrapolated;
+    }
+    for (const uint32_t c : queue_) {
+      const auto xyz = g.coords(c);
+      for (const auto& f : kFaces) {
+        const size_t nb = g.index(xyz[0] + f[0], xyz[1] + f[1], xyz[2] + f[2]);
+        if (kind_[nb] == Enclosed) kind_[nb] = Queued, next.push_back(uint32_t(nb));
+      }
+    }
+    queue_.swap(next);
+  }
+
+  // Lattice points of spacing `spacing` in the enclosed cells and the occupied cells bordering them,
+  // kept where no particle lies within 0.8 spacings: a lattice offset by half a spacing from the band's
+  // lies 0.87 spacings from it, and one layer too many at the band's inner edge (deep water) is safer
+  // than the gap of a layer that a full spacing leaves there.
+  const double ratio = double(cell) / double(spacing);
+  auto first_point = [&](int64_t c) { return int64_t(std::ceil(double(c) * ratio - 0.5)); };
+  const float spacing2 = 0.64f * spacing * spacing;
+  for (size_t c = 0; c < cells; ++c) {
+    const auto xyz = g.coords(c);
+    bool candidate = kind_[c] == Extrapolated || kind_[c] == Enclosed;
+    if (kind_[c] == Occupied)
+      for (int dz = -1; dz <= 1 && !candidate; ++dz)
+        for (int dy = -1; dy <= 1 && !candidate; ++dy)
+          for (int dx = -1; dx <= 1 && !candidate; ++dx) {
+            const uint8_t k = kind_[g.index(xyz[0] + dx, xyz[1] + dy, xyz[2] + dz)];
+            candidate = k == Extrapolated || k == Enclosed;
+          }
+    if (!candidate) continue;
+    for (int64_t k = first_point(xyz[2]); k < first_point(xyz[2] + 1); ++k)
+      for (int64_t j = first_point(xyz[1]); j < first_point(xyz[1] + 1); ++j)
+        for (int64_t i = first_point(xyz[0]); i < first_point(xyz[0] + 1); ++i) {
+          const Vec3f p = origin + Vec3f(float(i) + 0.5f, float(j) + 0.5f, float(k) + 0.5f) * spacing;
+          bool near = false;
+          for (int dz = -1; dz <= 1 && !near; ++dz)
+            for (int dy = -1; dy <= 1 && !near; ++dy)
+              for (int dx = -1; dx <= 1 && !near; ++dx) {
+                const size_t nb = g.index(xyz[0] + dx, xyz[1] + dy, xyz[2] + dz);
+                for (uint32_t m = start_[nb]; m < start_[nb + 1] && !near; ++m)
+                  near = (state.positions[members_[m]] - p).squaredNorm() < spacing2;
+              }
+          if (near) continue;
+          state.positions.push_back(p);
+          state.velocities.push_back(cell_velocity_[c]);
+          state.motion.push_back(cell_motion_[c]);
+          state.masses.push_back(0.0f);
+          state.ids.push_back(kFillerId);
+          ++result.filled;
+        }
+  }
+  return result;
+}
+
+}  // namespace spume
