@@ -112,7 +112,9 @@ TEST(NarrowBand, FullBlockAndSmallAirPocketAreLeftAsTheyAre) {
     EXPECT_EQ(fill.filled, 0u);
     ASSERT_EQ(state.positions.size(), before.positions.size());
     EXPECT_EQ(std::memcmp(state.positions.data(), before.positions.data(), state.positions.size() * sizeof(Vec3f)), 0);
-    if (fluid == &pocket) EXPECT_GT(fill.enclosed_cells, 0u);  // seen, and judged too small to be a band
+    if (fluid == &pocket) {
+      EXPECT_GT(fill.enclosed_cells, 0u);  // seen, and judged too small to be a band
+    }
   }
 }
 
