@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "sim/core/parallel.h"
+#include "sim/diffuse/poly6_sums.h"
 #include "sim/grid/block_buffer.h"
 
 namespace spume {
@@ -30,24 +31,10 @@ FlipMeasure FlipFluid::prepare(FluidStepState& state, float particle_radius, flo
     BlockBuffer block;
     for (size_t c = cb; c < ce; ++c) {
       block.gather(grid_, grid_.occupied_key(c), {sorted_velocity_});
-      const size_t mb = block.size();
-      const float *bx = block.x(), *by = block.y(), *bz = block.z();
-      const float *vx = block.attribute(0, 0), *vy = block.attribute(0, 1), *vz = block.attribute(0, 2);
       for (uint32_t si = grid_.cell_begin(c); si < grid_.cell_begin(c + 1); ++si) {
-        const float px = points[si].x(), py = points[si].y(), pz = points[si].z();
-        float count[kLanes] = {}, ws[kLanes] = {}, wx[kLanes] = {}, wy[kLanes] = {}, wz[kLanes] = {};
-        for (size_t j = 0; j < mb; j += kLanes)
-          for (size_t l = 0; l < kLanes; ++l) {
-            const float dx = bx[j + l] - px, dy = by[j + l] - py, dz = bz[j + l] - pz;
-            const float q2 = std::min((dx * dx + dy * dy + dz * dz) * inv_reach2, 4.0f);
-            const float t = std::max(1.0f - q2, 0.0f);
-            const float w = t * t * t;
-            count[l] += q2 <= h_q2 ? 1.0f : 0.0f;
-            ws[l] += w, wx[l] += w * vx[j + l], wy[l] += w * vy[j + l], wz[l] += w * vz[j + l];
-          }
         const uint32_t i = order[si];
-        counts_[i] = lane_sum(count);
-        smoothed_[i] = Vec3f(lane_sum(wx), lane_sum(wy), lane_sum(wz)) / lane_sum(ws);  // itself: w = 1
+        float weight_sum = 0.0f;  // at least the particle's own weight, 1
+        poly6_sums(block, points[si], inv_reach2, h_q2, counts_[i], weight_sum, smoothed_[i]);
       }
     }
   });
