@@ -112,7 +112,8 @@ std::optional<MantaflowVelocityUnits> mantaflow_velocity_units(const std::filesy
     const double length = double(*c.time_total - *o.time_total) / double(frame - other);
     if (length > 0.0 && std::isfinite(length)) frame_length = length, neighbour = p.filename().string();
   }
-  if (fps <= 0.0) fps = frame_length ? kTimeUnitsPerSecond / *frame_length : 24.0;
+  const bool fps_implied = fps <= 0.0;
+  if (fps_implied) fps = frame_length ? kTimeUnitsPerSecond / *frame_length : 24.0;
   units.fps = fps;
   const double per_frame = frame_length ? *frame_length : kTimeUnitsPerSecond / fps;
   units.factor = float(double(c.cell_size) * per_frame * fps);
@@ -123,7 +124,10 @@ std::optional<MantaflowVelocityUnits> mantaflow_velocity_units(const std::filesy
                                      " and ", neighbour, ")")
                                : str("frame length 0.1 x 25 / fps = ", per_frame,
                                      " time units (Blender's at time scale 1; no neighbouring config to measure it)"),
-                  "; factor = cell x frame length x fps = ", c.cell_size, " x ", per_frame, " x ", fps, " = ", units.factor);
+                  "; factor = cell x frame length x fps = ", c.cell_size, " x ", per_frame, " x ", fps, " = ", units.factor,
+                  fps_implied ? str(" (", fps, " fps: ", frame_length ? "the rate this frame length means" : "assumed",
+                                    " at Blender's time scale 1; a run takes its own --fps)")
+                              : std::string());
   return units;
 }
 

@@ -85,7 +85,10 @@ openvdb::GridBase::Ptr make_points(const PointsSpec& s) {
   return grid;
 }
 
-void write_vdb(const fs::path& path, const openvdb::GridPtrVec& grids) { openvdb::io::File(path.string()).write(grids); }
+void write_vdb(const fs::path& path, const openvdb::GridPtrVec& grids) {
+  fs::create_directories(path.parent_path());
+  openvdb::io::File(path.string()).write(grids);
+}
 
 // A lattice of n^3 points in [lo, lo + n step), velocity (i, j, -k) / 10, id 1000 + index.
 PointsSpec lattice(int n, openvdb::Vec3d lo, double step) {
@@ -348,6 +351,31 @@ TEST(FluidImport, AutoTurnsAMantaflowCacheAndConvertsItsUnits) {
   const FluidImport lone = resolve_fluid_import(dir / "lone/data/fluid_data_0001.vdb", "auto", "", std::nullopt, 24.0);
   EXPECT_EQ(lone.read.up, UpAxis::Y);
   EXPECT_FLOAT_EQ(lone.velocity_scale, 1.0f);
+}
+
+// A Mantaflow .vdb whose config/ was left behind: still Z-up by its names, and a warning with the fix.
+TEST(FluidImport, AMantaflowCacheWithoutItsConfigIsWarnedAboutWithTheFix) {
+  testing::TempDir dir;
+  PointsSpec s = lattice(2, {0.2, 0.3, 0.4}, 0.015625);
+  s.name = "particles";
+  s.ids32.clear();
+  s.voxel = 0.03125;
+  s.velocity_name = "particles_velocity";
+  write_vdb(dir / "data/fluid_data_0001.vdb", {make_points(s)});
+  const FluidImport m = resolve_fluid_import(dir / "data/fluid_data_0001.vdb", "auto", "", std::nullopt, 24.0);
+  EXPECT_EQ(m.read.up, UpAxis::Z);
+  EXPECT_FLOAT_EQ(m.velocity_scale, 1.0f);  // not guessed: warned about
+  ASSERT_EQ(m.notes.size(), 2u);
+  // 2.5 x 0.03125 m = 0.078125
+  EXPECT_NE(m.notes[1].find("warning:"), std::string::npos) << m.notes[1];
+  EXPECT_NE(m.notes[1].find("fluid.velocity_scale = 2.5 x cell = 0.078125"), std::string::npos) << m.notes[1];
+  // Other names: a plain Y-up cache, nothing said.
+  s.name = "points";
+  s.velocity_name = "v";
+  write_vdb(dir / "other/fluid_data_0001.vdb", {make_points(s)});
+  const FluidImport o = resolve_fluid_import(dir / "other/fluid_data_0001.vdb", "auto", "", std::nullopt, 24.0);
+  EXPECT_EQ(o.read.up, UpAxis::Y);
+  EXPECT_TRUE(o.notes.empty());
 }
 
 // A Z-up sequence falling along -z: read as Y-up, the liquid moves towards -y, the way spume's gravity pulls.
