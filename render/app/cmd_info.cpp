@@ -55,7 +55,7 @@ std::pair<std::string, long> sequence_of(const std::string& name) {
   }
   if (sequences.empty())
     fail(dir.string(), ": is a directory, not a particle file, and holds no particle files (",
-         "formats: .bgeo .bgeo.gz .bgeo.sc .bhclassic .vtk .vtu .vtp .ply .spf .spd)");
+         "formats: .bgeo .bgeo.gz .bgeo.sc .bhclassic .vtk .vtu .vtp .ply .vdb .spf .spd)");
   fail(dir.string(), ": is a directory, not a particle file; give one of its particle files (# is the frame ",
        "number):", listing);
 }
@@ -77,7 +77,8 @@ Command cmd_info() {
   spec.name = "info";
   spec.forms = {"FILE..."};
   spec.summary = "what a particle file or cache holds: format, counts, attributes, bounds";
-  spec.notes = {"formats: .bgeo .bgeo.gz .bgeo.sc .bhclassic .vtk .vtu .vtp .ply, spume caches .spf .spd",
+  spec.notes = {"formats: .bgeo .bgeo.gz .bgeo.sc .bhclassic .vtk .vtu .vtp .ply .vdb, spume caches .spf .spd",
+                "a .vdb: its grids, point attributes and codecs, and the up axis and velocity units spume takes",
                 "a directory is refused with a list of the particle files in it"};
   spec.max_operands = SIZE_MAX;
   return {spec, info};

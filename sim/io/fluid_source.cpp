@@ -58,8 +58,9 @@ namespace {
 
 class FileSequenceSource final : public FluidSource {
  public:
-  FileSequenceSource(std::string pattern, double fps, bool allow_gaps, float velocity_scale)
-      : pattern_(std::move(pattern)), fps_(fps), allow_gaps_(allow_gaps), velocity_scale_(velocity_scale) {
+  FileSequenceSource(std::string pattern, double fps, bool allow_gaps, float velocity_scale, FluidReadOptions read)
+      : pattern_(std::move(pattern)), fps_(fps), allow_gaps_(allow_gaps), velocity_scale_(velocity_scale),
+        read_(std::move(read)) {
     if (!is_frame_pattern(pattern_))
       fail(pattern_, ": a fluid file pattern needs one frame placeholder (%d, %04d, #### or $F, $F4)");
     files_ = find_pattern_frames(pattern_);
@@ -89,7 +90,7 @@ class FileSequenceSource final : public FluidSource {
  private:
   FluidFrame read(int frame) const {
     const std::string path = expand_frame_pattern(pattern_, frame);
-    FluidFrame f = read_fluid_file(path);
+    FluidFrame f = read_fluid_file(path, read_);
     if (f.size() == 0) fail(path, ": holds no fluid particles; every fluid frame needs at least one");
     f.index = frame;
     f.time = double(frame) / fps_;
@@ -102,14 +103,15 @@ class FileSequenceSource final : public FluidSource {
   double fps_;
   bool allow_gaps_;
   float velocity_scale_;
+  FluidReadOptions read_;
   std::vector<int> files_, frames_;
 };
 
 }  // namespace
 
 std::unique_ptr<FluidSource> make_file_source(const std::string& pattern, double fps, bool allow_gaps,
-                                              float velocity_scale) {
-  return std::make_unique<FileSequenceSource>(pattern, fps, allow_gaps, velocity_scale);
+                                              float velocity_scale, const FluidReadOptions& read) {
+  return std::make_unique<FileSequenceSource>(pattern, fps, allow_gaps, velocity_scale, read);
 }
 
 }  // namespace spume

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "sim/core/frames.h"
+#include "sim/io/fluid_read_options.h"
 
 namespace spume {
 
@@ -22,9 +23,10 @@ class FluidSource {
 // `allow_gaps`, frames missing between the first and last file are available too, interpolated
 // between the files on either side (interpolate_frames); without, they are simply not listed (the
 // stages refuse a range with a gap, naming the missing frame).
-// `velocity_scale` multiplies the stored velocities as they are read (fluid.velocity_scale).
+// `velocity_scale` multiplies the stored velocities as they are read (fluid.velocity_scale, or a
+// Mantaflow cache's units: io/fluid_import.h); `read` turns a Z-up cache and picks a VDB grid.
 std::unique_ptr<FluidSource> make_file_source(const std::string& pattern, double fps, bool allow_gaps = false,
-                                              float velocity_scale = 1.0f);
+                                              float velocity_scale = 1.0f, const FluidReadOptions& read = {});
 
 // Frame numbers missing between consecutive entries of sorted `frames`.
 std::vector<int> missing_frames(const std::vector<int>& frames);

@@ -186,12 +186,16 @@ float median_spacing(const std::vector<Vec3f>& positions, size_t samples) {
 }
 
 FluidSurvey survey_fluid_files(const std::string& pattern, const std::vector<int>& frames,
-                               const std::filesystem::path& keep, bool quiet) {
+                               const std::filesystem::path& keep, bool quiet, const FluidReadOptions& read) {
   if (frames.empty()) fail(pattern, ": no frames to survey");
   FluidSurvey survey;
   survey.pattern = pattern;
+  survey.read = read;
   survey.frames.resize(frames.size());
-  const Kept kept = read_kept(keep, pattern);
+  // A survey kept under other read options measured other coordinates: it is not this one.
+  const std::string kept_as = pattern + (read.up == UpAxis::Y ? "" : str(" (", up_axis_name(read.up), "-up)")) +
+                              (read.vdb_grid.empty() ? "" : str(" (grid ", read.vdb_grid, ")"));
+  const Kept kept = read_kept(keep, kept_as);
   if (kept.rejected > 0)
     survey.notes.push_back(str(keep.string(), ": ", kept.rejected, kept.rejected > 1 ? " entries" : " entry",
                                " did not match ", kept.rejected > 1 ? "their" : "its",
@@ -232,7 +236,7 @@ FluidSurvey survey_fluid_files(const std::string& pattern, const std::vector<int
       FrameSurvey& f = survey.frames[todo[t]];
       const std::string path = expand_frame_pattern(pattern, f.frame);
       try {
-        const FluidFrame frame = read_fluid_file(path);
+        const FluidFrame frame = read_fluid_file(path, read);
         const FileIdentity id = f.file;
         f = survey_positions(frame.positions, frame.velocities);
         f.frame = frames[todo[t]];
@@ -249,12 +253,12 @@ FluidSurvey survey_fluid_files(const std::string& pattern, const std::vector<int
   if (spacing_known(spacing_at)) {
     survey.spacing = kept.spacing;
   } else {
-    const FluidFrame first = read_fluid_file(expand_frame_pattern(pattern, frames[spacing_at]));
+    const FluidFrame first = read_fluid_file(expand_frame_pattern(pattern, frames[spacing_at]), read);
     survey.spacing = median_spacing(first.positions);
   }
 
   if (!keep.empty()) {
-    Json j = spacing_json(pattern, survey.spacing, frames[spacing_at], survey.frames[spacing_at].file);
+    Json j = spacing_json(kept_as, survey.spacing, frames[spacing_at], survey.frames[spacing_at].file);
     j["version"] = kSurveyVersion;
     j["frames"] = Json::array();
     // Keep what was known of frames outside this range too, so other ranges stay cheap.

@@ -15,6 +15,7 @@
 
 #include "sim/core/vec.h"
 #include "sim/io/file_identity.h"
+#include "sim/io/fluid_read_options.h"
 
 namespace spume {
 
@@ -37,6 +38,7 @@ struct FrameSurvey {
 
 struct FluidSurvey {
   std::string pattern;
+  FluidReadOptions read;            // how its files were read (axis, VDB grid): read them again the same way
   std::vector<FrameSurvey> frames;  // in frame order
   // Median distance from a particle to its nearest neighbour in the first frame holding two or more
   // (a sample of up to 512 particles): the cache's particle spacing, to check the radius against.
@@ -48,8 +50,9 @@ struct FluidSurvey {
 // Surveys `frames` of `pattern` (they must exist), reusing what `keep` records for files whose
 // identity is unchanged, and rewrites `keep` (atomically) when anything was surveyed. `keep` may be
 // empty: nothing is read or written. Frames are read in parallel. Progress on stderr unless quiet.
+// Files are read with `read` (a survey kept under other options is not reused).
 FluidSurvey survey_fluid_files(const std::string& pattern, const std::vector<int>& frames,
-                               const std::filesystem::path& keep, bool quiet);
+                               const std::filesystem::path& keep, bool quiet, const FluidReadOptions& read = {});
 
 // One frame's entry from particle positions and stored velocities, if any (exposed for tests); no
 // particles: empty bounds, NaN sheets.

@@ -9,16 +9,18 @@
 
 #include "sim/core/error.h"
 #include "sim/io/bgeo.h"
+#include "sim/io/fluid_import.h"
 #include "sim/io/houdini_geometry.h"
 #include "sim/io/io_bytes.h"
 #include "sim/io/ply.h"
 #include "sim/io/spume_cache.h"
+#include "sim/io/vdb_points.h"
 #include "sim/io/vtk.h"
 
 namespace spume {
 namespace {
 
-constexpr const char* kAllowed = ".bgeo, .bgeo.gz, .bgeo.sc, .bhclassic, .bhclassic.gz, .vtk, .vtu, .vtp, .ply, .spf, .spd";
+constexpr const char* kAllowed = ".bgeo, .bgeo.gz, .bgeo.sc, .bhclassic, .bhclassic.gz, .vtk, .vtu, .vtp, .ply, .vdb, .spf, .spd";
 
 void require_file(const std::filesystem::path& path) {
   std::error_code ec;
@@ -128,26 +130,65 @@ ParticleFormat particle_format(const std::filesystem::path& path) {
   if (ends_with(name, ".vtk")) return ParticleFormat::VtkLegacy;
   if (ends_with(name, ".vtu") || ends_with(name, ".vtp")) return ParticleFormat::VtkXml;
   if (ends_with(name, ".ply")) return ParticleFormat::Ply;
+  if (ends_with(name, ".vdb")) return ParticleFormat::Vdb;
   if (ends_with(name, ".spf")) return ParticleFormat::FluidCache;
   if (ends_with(name, ".spd")) return ParticleFormat::DiffuseCache;
   if (is_houdini_geometry(path)) return ParticleFormat::HoudiniGeometry;  // Houdini's binary JSON, any name
   fail(path.string(), ": unknown particle file extension '", path.extension().string(), "'; allowed ", kAllowed);
 }
 
-FluidFrame read_fluid_file(const std::filesystem::path& path) {
-  require_file(path);
+namespace {
+
+FluidFrame read_as_stored(const std::filesystem::path& path, const FluidReadOptions& options) {
   switch (particle_format(path)) {
     case ParticleFormat::Bgeo: return read_bgeo(path);
     case ParticleFormat::HoudiniGeometry: return read_houdini_geometry(path);
     case ParticleFormat::VtkLegacy: return read_vtk(path);
     case ParticleFormat::VtkXml: return read_vtu(path);
     case ParticleFormat::Ply: return read_ply(path);
+    case ParticleFormat::Vdb: return read_vdb_points(path, options.vdb_grid);
     case ParticleFormat::FluidCache: return read_fluid_cache(path);
     case ParticleFormat::DiffuseCache:
       fail(path.string(), ": is a spume diffuse cache (.spd), not a fluid frame; fluid files are .bgeo, .bgeo.sc, .vtk, "
-           ".vtu, .vtp, .ply or .spf");
+           ".vtu, .vtp, .ply, .vdb or .spf");
   }
   fail(path.string(), ": unsupported particle format");
+}
+
+void describe_vdb(std::ostringstream& out, const std::filesystem::path& path) {
+  VdbPointsInfo info;
+  FluidFrame frame = read_vdb_points(path, "", &info);
+  out << "  format: OpenVDB, " << info.grids.size() << " grid" << (info.grids.size() == 1 ? "" : "s") << "\n";
+  for (const VdbGridInfo& g : info.grids)
+    out << "    grid '" << g.name << "': " << g.type << ", voxel size " << g.voxel_size << " m, "
+        << (g.points ? str(g.count, " points") : str(g.count, " active voxels")) << (g.used ? " (read)" : "") << "\n";
+  out << "  point attributes:";
+  for (const VdbAttributeInfo& a : info.attributes)
+    out << " " << (info.grids.size() > 1 ? a.grid + "." : "") << a.name << " (" << a.type << ", " << a.codec << ")";
+  out << "\n";
+  out << "  spume reads: " << info.choice << "; positions P through the grid's transform; velocity "
+      << (info.velocity_attribute.empty() ? "none (v, vel, velocity or particles_velocity)" : "from '" + info.velocity_attribute + "'")
+      << "; ids " << (info.id_attribute.empty() ? "none (no 'id')" : "from 'id'") << "\n";
+  // What a scene with the default keys would make of it (fluid.up_axis "auto", no fluid.velocity_scale).
+  const FluidImport import = resolve_fluid_import(path, "auto", "", std::nullopt, 0.0);
+  if (import.read.up == UpAxis::Y) out << "  up axis: y (no Mantaflow config beside the file; fluid.up_axis = \"z\" turns a Z-up cache)\n";
+  for (const std::string& note : import.notes) out << "  " << note << "\n";
+  to_y_up(frame, import.read.up);
+  if (import.velocity_scale != 1.0f)
+    for (Vec3f& v : frame.velocities) v *= import.velocity_scale;
+  if (import.read.up != UpAxis::Y || import.velocity_scale != 1.0f)
+    out << "  below: as spume takes it" << (import.read.up != UpAxis::Y ? ", Y-up" : "")
+        << (import.velocity_scale != 1.0f ? ", velocities in m/s" : "") << "\n";
+  describe_fluid(out, frame);
+}
+
+}  // namespace
+
+FluidFrame read_fluid_file(const std::filesystem::path& path, const FluidReadOptions& options) {
+  require_file(path);
+  FluidFrame frame = read_as_stored(path, options);
+  to_y_up(frame, options.up);
+  return frame;
 }
 
 std::string describe_particle_file(const std::filesystem::path& path) {
@@ -174,6 +215,7 @@ std::string describe_particle_file(const std::filesystem::path& path) {
       break;
     }
     case ParticleFormat::HoudiniGeometry: describe_houdini(out, path); break;
+    case ParticleFormat::Vdb: describe_vdb(out, path); break;
     case ParticleFormat::VtkLegacy:
     case ParticleFormat::VtkXml:
     case ParticleFormat::Ply: {

@@ -52,7 +52,13 @@ inline constexpr KeySpec allow_gaps{.path = "fluid.allow_gaps", .type = Boolean,
 inline constexpr KeySpec velocity_scale{
     .path = "fluid.velocity_scale", .value = {1}, .lo = 0, .hi = 1e6, .lo_bound = Open, .hi_bound = Closed,
     .doc = "files: factor on the stored velocities, for caches in other units (the log measures them against "
-           "the motion)"};
+           "the motion); a Mantaflow cache's grid units are converted from its config unless given"};
+inline constexpr KeySpec up_axis{
+    .path = "fluid.up_axis", .type = Choice, .choices = "auto|y|z",
+    .doc = "files: the cache's up axis; z turns (x, y, z) into spume's Y-up (x, z, -y); auto is z for a Blender "
+           "Mantaflow cache (config/ beside data/), else y"};
+inline constexpr KeySpec vdb_grid{.path = "fluid.vdb_grid", .type = Text, .default_text = "every point data grid",
+                                  .doc = "files: the point data grid of a .vdb cache to read, by name"};
 inline constexpr KeySpec particles{
     .path = "fluid.particles", .type = Choice, .choices = "sph|flip",
     .doc = "what the cached particles are: sph (the paper's model as is) or flip (velocities averaged over 2 h "
@@ -70,8 +76,8 @@ inline constexpr KeySpec block_max{.path = "fluid.blocks[].max", .type = Vec3, .
                                    .lo_bound = Closed, .hi_bound = Closed, .default_text = "required",
                                    .doc = "a block's upper corner, above min on every axis"};
 inline constexpr auto all = std::to_array<const KeySpec*>(
-    {&source, &files, &radius, &support_radius, &fps, &rest_density, &frames, &allow_gaps, &velocity_scale, &particles, &narrow_band, &blocks,
-     &block_min, &block_max});
+    {&source, &files, &radius, &support_radius, &fps, &rest_density, &frames, &allow_gaps, &velocity_scale, &up_axis,
+     &vdb_grid, &particles, &narrow_band, &blocks, &block_min, &block_max});
 }  // namespace fluid
 
 // Solver settings (fluid.solver.*): sim/fluid/fluid_params.h explains each choice.

@@ -60,8 +60,10 @@ SceneInputs read_scene_inputs(const SimScene& scene, const std::filesystem::path
                                                            scene.frames->second) : std::string());
   std::error_code ec;
   std::filesystem::create_directories(scene_out, ec);
-  in.survey = survey_fluid_files(pattern, frames, fluid_survey_path(scene_out), quiet);
-  in.notes = in.survey.notes;
+  in.survey = survey_fluid_files(pattern, frames, fluid_survey_path(scene_out), quiet,
+                                 solver ? FluidReadOptions{} : scene.read);
+  in.notes = scene.import_notes;
+  in.notes.insert(in.notes.end(), in.survey.notes.begin(), in.survey.notes.end());
 
   if (const std::vector<int> missing = missing_frames(frames); !missing.empty() && scene.allow_gaps)
     in.notes.push_back(str("fluid.allow_gaps: ", missing.size(), " missing fluid frame", missing.size() > 1 ? "s" : "",

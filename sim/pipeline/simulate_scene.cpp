@@ -5,7 +5,7 @@ namespace spume {
 std::unique_ptr<FluidSource> scene_fluid_source(const SimScene& scene, const std::filesystem::path& out_root) {
   if (scene.source == FluidSourceKind::Solver)
     return make_file_source(fluid_cache_pattern(out_root / scene.name), scene.fluid.fps);
-  return make_file_source(scene.file_pattern, scene.fluid.fps, scene.allow_gaps, scene.velocity_scale);
+  return make_file_source(scene.file_pattern, scene.fluid.fps, scene.allow_gaps, scene.velocity_scale, scene.read);
 }
 
 std::vector<int> scene_frames(const SimScene& scene) {
@@ -14,7 +14,7 @@ std::vector<int> scene_frames(const SimScene& scene) {
     for (int f = scene.frames->first; f <= scene.frames->second; ++f) frames.push_back(f);
     return frames;
   }
-  return diffuse_frames_to_run(scene, *make_file_source(scene.file_pattern, scene.fluid.fps, scene.allow_gaps, scene.velocity_scale),
+  return diffuse_frames_to_run(scene, *make_file_source(scene.file_pattern, scene.fluid.fps, scene.allow_gaps, scene.velocity_scale, scene.read),
                                SimulateOptions{});
 }
 

@@ -1,6 +1,8 @@
 #include "sim/scene/sim_scene.h"
 
 #include "sim/core/error.h"
+#include "sim/io/fluid_import.h"
+#include "sim/io/frame_pattern.h"
 #include "sim/scene/diffuse_params_reader.h"
 #include "sim/keys/scene_keys.h"
 #include "sim/scene/solids_reader.h"
@@ -49,6 +51,19 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
     scene.file_pattern = pattern.is_absolute() ? pattern.string() : (scene_dir / pattern).lexically_normal().string();
     scene.allow_gaps = fluid.boolean(k::fluid::allow_gaps);
     scene.velocity_scale = float(fluid.number(k::fluid::velocity_scale));
+    // The axis and the units are decided from the first file (a Mantaflow config beside it).
+    std::optional<float> given_scale;
+    if (fluid.has(k::fluid::velocity_scale.name())) given_scale = scene.velocity_scale;
+    std::filesystem::path first = scene.file_pattern;
+    if (is_frame_pattern(scene.file_pattern))
+      if (const std::vector<int> found = find_pattern_frames(scene.file_pattern); !found.empty())
+        first = expand_frame_pattern(scene.file_pattern, found.front());
+    const FluidImport import = resolve_fluid_import(first, fluid.choice(k::fluid::up_axis),
+                                                    fluid.text(k::fluid::vdb_grid.name(), ""), given_scale,
+                                                    scene.fluid.fps);
+    scene.read = import.read;
+    scene.velocity_scale = import.velocity_scale;
+    scene.import_notes = import.notes;
   }
   if (scene.source == FluidSourceKind::Solver) scene.solver = read_fluid_solver(fluid, scene.gravity);
   // Files: every file found unless limited; the solver: the declared range unless given.
@@ -81,6 +96,9 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
   Json fluid_keys = root.effective("fluid");
   if (fluid_keys.is_object()) fluid_keys.erase("frames");
   Json keys = {{"gravity", root.effective("gravity")}, {"fluid", fluid_keys}, {"solids", root.effective("solids")}};
+  // What "auto" and a Mantaflow config decided shapes the frames as much as the keys do.
+  if (scene.read.up != UpAxis::Y || scene.velocity_scale != float(fluid.number(k::fluid::velocity_scale)))
+    keys["fluid_import"] = {{"up_axis", up_axis_name(scene.read.up)}, {"velocity_scale", scene.velocity_scale}};
   keys["output"] = {{"fluid_bgeo", scene.write_fluid_bgeo}};  // what the fluid stage writes
   scene.fluid_keys = with_generation(keys);
   keys["diffuse"] = root.effective("diffuse");

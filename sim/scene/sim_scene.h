@@ -8,6 +8,7 @@
 
 #include "sim/core/frames.h"
 #include "sim/core/params.h"
+#include "sim/io/fluid_read_options.h"
 #include "sim/diffuse/params.h"
 #include "sim/scene/fluid_scene_reader.h"
 #include "sim/geometry/solids.h"
@@ -30,6 +31,8 @@ struct SimScene {
   float velocity_scale = 1.0f;          // Files: factor on the stored velocities (caches in other units)
   bool flip_particles = false;          // fluid.particles = flip (MODEL.md §9.2)
   bool fill_narrow_band = true;         // fluid.narrow_band = auto (MODEL.md §9.1)
+  FluidReadOptions read;                // Files: the up axis, the VDB grid (io/fluid_import.h)
+  std::vector<std::string> import_notes;  // Files: what was decided about the axis and units, and why
   FluidSequenceInfo fluid;
   std::optional<std::pair<int, int>> frames;  // inclusive frame range to use, if limited
   Vec3f gravity = Vec3f(0.0f, -9.81f, 0.0f);  // m/s^2

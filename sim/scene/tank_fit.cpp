@@ -44,7 +44,7 @@ std::string check_tanks_hold_fluid(const FluidSurvey& survey, const SolidSet& so
     if (!f.has_sheet()) continue;
     const Vec3f sheet_lo(f.sheet[0], f.sheet[2], f.sheet[4]), sheet_hi(f.sheet[1], f.sheet[3], f.sheet[5]);
     if (held(sheet_lo, sheet_hi)) continue;
-    const FluidFrame frame = read_fluid_file(expand_frame_pattern(survey.pattern, f.frame));
+    const FluidFrame frame = read_fluid_file(expand_frame_pattern(survey.pattern, f.frame), survey.read);
     size_t outside = 0;
     for (const Vec3f& p : frame.positions) outside += !held(p, p);
     if (float(outside) > kTankOutsideShare * float(frame.size())) {

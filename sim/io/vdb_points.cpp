@@ -1,0 +1,228 @@
+#include "sim/io/vdb_points.h"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <fstream>
+#include <mutex>
+#include <optional>
+
+#include <openvdb/io/File.h>
+#include <openvdb/openvdb.h>
+#include <openvdb/points/AttributeArray.h>
+#include <openvdb/points/PointCount.h>
+#include <openvdb/points/PointDataGrid.h>
+
+#include "sim/core/error.h"
+
+namespace spume {
+namespace {
+
+namespace vdb = openvdb;
+namespace vpts = openvdb::points;
+
+// Velocity attributes in the order they are looked for: Houdini's, then longer spellings, then Mantaflow's.
+constexpr std::array<const char*, 4> kVelocityNames = {"v", "vel", "velocity", "particles_velocity"};
+
+void initialize_openvdb() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    vdb::initialize();
+    // Mantaflow stores its int32 flag `U` with the truncate codec, which OpenVDB does not register.
+    using Int32Truncate = vpts::TypedAttributeArray<int32_t, vpts::TruncateCodec>;
+    if (!Int32Truncate::isRegistered()) Int32Truncate::registerType();
+  });
+}
+
+// The value type and codec of attribute `index`, e.g. ("vec3s", "trnc").
+std::pair<std::string, std::string> attribute_type(const vpts::AttributeSet::Descriptor& d, size_t index) {
+  const vdb::NamePair& t = d.type(index);
+  return {t.first, t.second};
+}
+
+std::optional<size_t> find_attribute(const vpts::AttributeSet::Descriptor& d, const std::string& name) {
+  const size_t i = d.find(name);
+  if (i == vpts::AttributeSet::INVALID_POS) return std::nullopt;
+  return i;
+}
+
+// Reads a 3-vector attribute of either float precision, whatever its codec.
+template <typename Leaf>
+Vec3f vec3_at(const Leaf& leaf, size_t index, vdb::Index i, bool doubles) {
+  if (doubles) {
+    const vpts::AttributeHandle<vdb::Vec3d> h(leaf.constAttributeArray(index));
+    const vdb::Vec3d v = h.get(i);
+    return Vec3f(float(v.x()), float(v.y()), float(v.z()));
+  }
+  const vpts::AttributeHandle<vdb::Vec3f> h(leaf.constAttributeArray(index));
+  const vdb::Vec3f v = h.get(i);
+  return Vec3f(v.x(), v.y(), v.z());
+}
+
+bool is_vec3(const std::string& type, bool& doubles) {
+  doubles = type == "vec3d";
+  return type == "vec3s" || type == "vec3d";
+}
+
+struct GridRead {
+  std::vector<Vec3f> positions, velocities;
+  std::vector<int64_t> ids;
+  std::string velocity_name, id_name;
+};
+
+GridRead read_point_grid(const vpts::PointDataGrid& grid, const std::string& where) {
+  GridRead out;
+  const auto first = grid.tree().cbeginLeaf();
+  if (!first) return out;
+  const vpts::AttributeSet::Descriptor& d = first->attributeSet().descriptor();
+  const auto p = find_attribute(d, "P");
+  if (!p) fail(where, ": point grid '", grid.getName(), "' has no position attribute P");
+  bool p_doubles = false;
+  if (!is_vec3(attribute_type(d, *p).first, p_doubles))
+    fail(where, ": point grid '", grid.getName(), "': P is ", attribute_type(d, *p).first, "; expected vec3s or vec3d");
+  std::optional<size_t> v;
+  bool v_doubles = false;
+  for (const char* name : kVelocityNames)
+    if ((v = find_attribute(d, name))) {
+      out.velocity_name = name;
+      if (!is_vec3(attribute_type(d, *v).first, v_doubles))
+        fail(where, ": point grid '", grid.getName(), "': velocity attribute '", name, "' is ",
+             attribute_type(d, *v).first, "; expected vec3s or vec3d");
+      break;
+    }
+  const auto id = find_attribute(d, "id");
+  bool id64 = false;
+  if (id) {
+    const std::string type = attribute_type(d, *id).first;
+    if (type != "int32" && type != "int64")
+      fail(where, ": point grid '", grid.getName(), "': id is ", type, "; expected int32 or int64");
+    id64 = type == "int64";
+    out.id_name = "id";
+  }
+
+  const vdb::math::Transform& xform = grid.transform();
+  for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) {
+    // Every leaf of a grid normally shares one descriptor; one that does not would misread silently.
+    if (leaf->attributeSet().descriptor().find("P") != *p)
+      fail(where, ": point grid '", grid.getName(), "': its leaves disagree on their attributes");
+    for (auto i = leaf->beginIndexAll(); i; ++i) {
+      const Vec3f local = vec3_at(*leaf, *p, *i, p_doubles);
+      const vdb::Vec3d index_space = i.getCoord().asVec3d() + vdb::Vec3d(local.x(), local.y(), local.z());
+      const vdb::Vec3d world = xform.indexToWorld(index_space);
+      out.positions.emplace_back(float(world.x()), float(world.y()), float(world.z()));
+      if (v) out.velocities.push_back(vec3_at(*leaf, *v, *i, v_doubles));
+      if (id) {
+        if (id64) {
+          out.ids.push_back(vpts::AttributeHandle<int64_t>(leaf->constAttributeArray(*id)).get(*i));
+        } else {
+          out.ids.push_back(vpts::AttributeHandle<int32_t>(leaf->constAttributeArray(*id)).get(*i));
+        }
+      }
+    }
+  }
+  return out;
+}
+
+std::string grid_type_summary(const vdb::GridBase& g) { return g.type(); }
+
+}  // namespace
+
+bool has_vdb_magic(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::array<unsigned char, 8> magic{};
+  if (!in.read(reinterpret_cast<char*>(magic.data()), magic.size())) return false;
+  // OPENVDB_MAGIC (0x56444220) as a little-endian int64: " BDV" and four zero bytes.
+  constexpr std::array<unsigned char, 8> kMagic = {0x20, 0x42, 0x44, 0x56, 0, 0, 0, 0};
+  return magic == kMagic;
+}
+
+FluidFrame read_vdb_points(const std::filesystem::path& path, const std::string& grid_name, VdbPointsInfo* info) {
+  initialize_openvdb();
+  const std::string where = path.string();
+  if (!has_vdb_magic(path)) fail(where, ": not an OpenVDB file (no VDB magic number at its start)");
+  VdbPointsInfo local;
+  VdbPointsInfo& meta = info ? *info : local;
+  meta = VdbPointsInfo{};
+  FluidFrame frame;
+  std::vector<int64_t> ids;
+  int point_grids = 0, used_grids = 0, grids_with_velocity = 0, grids_with_ids = 0;
+  try {
+    vdb::io::File file(where);
+    file.open(/*delayLoad=*/false);
+    const vdb::GridPtrVecPtr headers = file.readAllGridMetadata();
+    for (const vdb::GridBase::Ptr& header : *headers) {
+      VdbGridInfo g;
+      g.name = header->getName();
+      g.type = grid_type_summary(*header);
+      g.voxel_size = header->transform().voxelSize().x();
+      g.points = header->isType<vpts::PointDataGrid>();
+      if (!g.points) {
+        if (const auto count = header->getMetadata<vdb::Int64Metadata>(vdb::GridBase::META_FILE_VOXEL_COUNT))
+          g.count = uint64_t(std::max<int64_t>(count->value(), 0));
+        meta.grids.push_back(g);
+        continue;
+      }
+      ++point_grids;
+      const auto grid = vdb::gridPtrCast<vpts::PointDataGrid>(file.readGrid(g.name));
+      if (!grid) fail(where, ": grid '", g.name, "' could not be read as points");
+      g.count = vpts::pointCount(grid->tree());
+      if (const auto leaf = grid->tree().cbeginLeaf()) {
+        const auto& d = leaf->attributeSet().descriptor();
+        for (const auto& [name, index] : d.map()) {
+          const auto [type, codec] = attribute_type(d, index);
+          meta.attributes.push_back({g.name, name, type, codec});
+        }
+      }
+      g.used = grid_name.empty() || grid_name == g.name;
+      if (g.used) {
+        GridRead read = read_point_grid(*grid, where);
+        ++used_grids;
+        grids_with_velocity += !read.velocity_name.empty();
+        grids_with_ids += !read.id_name.empty();
+        if (!read.velocity_name.empty()) meta.velocity_attribute = read.velocity_name;
+        if (!read.id_name.empty()) meta.id_attribute = read.id_name;
+        frame.positions.insert(frame.positions.end(), read.positions.begin(), read.positions.end());
+        frame.velocities.insert(frame.velocities.end(), read.velocities.begin(), read.velocities.end());
+        ids.insert(ids.end(), read.ids.begin(), read.ids.end());
+      }
+      meta.grids.push_back(g);
+    }
+    file.close();
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    fail(where, ": cannot read this OpenVDB file (cut short or damaged?): ", e.what());
+  }
+  if (point_grids == 0) {
+    std::string names;
+    for (const VdbGridInfo& g : meta.grids) names += str(names.empty() ? "" : ", ", "'", g.name, "' (", g.type, ")");
+    fail(where, ": holds no point data grid (its grids: ", names.empty() ? "none" : names,
+         "); spume reads particles, e.g. Mantaflow's 'particles' grid or Houdini's VDB points");
+  }
+  if (!grid_name.empty() && used_grids == 0) {
+    std::string names;
+    for (const VdbGridInfo& g : meta.grids)
+      if (g.points) names += str(names.empty() ? "" : ", ", "'", g.name, "'");
+    fail(where, ": no point data grid named '", grid_name, "' (fluid.vdb_grid); its point grids: ", names);
+  }
+  if (grids_with_velocity != 0 && grids_with_velocity != used_grids)
+    fail(where, ": some point grids have velocities and some do not; name one with fluid.vdb_grid");
+  if (grids_with_ids != 0 && grids_with_ids != used_grids)
+    fail(where, ": some point grids have ids and some do not; name one with fluid.vdb_grid");
+  for (int64_t id : ids) {
+    if (id < 0 || id > int64_t(UINT32_MAX))
+      fail(where, ": id ", id, " is outside 0 .. ", UINT32_MAX, " (spume's particle ids are unsigned 32-bit)");
+    frame.ids.push_back(uint32_t(id));
+  }
+  std::string used;
+  for (const VdbGridInfo& g : meta.grids)
+    if (g.used) used += str(used.empty() ? "" : ", ", "'", g.name, "'");
+  meta.choice = grid_name.empty()
+                    ? str(used_grids == 1 ? "the point grid " : "every point grid: ", used,
+                          used_grids == 1 ? " (the only one)" : " (fluid.vdb_grid names one)")
+                    : str("the point grid ", used, " (fluid.vdb_grid)");
+  frame.validate(where);
+  return frame;
+}
+
+}  // namespace spume

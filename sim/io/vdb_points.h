@@ -1,0 +1,45 @@
+#pragma once
+// OpenVDB point caches (.vdb): Blender Mantaflow's fluid_data_####.vdb, Houdini's VDB points, any
+// file with point data grids. Positions go through each grid's transform (world space); velocity from
+// `v`, `vel`, `velocity` or `particles_velocity`, ids from `id` (int32 or int64), any codec. The
+// OpenVDB headers stay in vdb_points.cpp: this header is what the rest of spume sees.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "sim/core/frames.h"
+
+namespace spume {
+
+struct VdbGridInfo {
+  std::string name;
+  std::string type;          // OpenVDB's grid type, e.g. "ptdataidx32_ptdata", "Tree_vec3s_5_4_3"
+  double voxel_size = 0.0;   // m (the transform's voxel size along x)
+  bool points = false;       // a point data grid
+  uint64_t count = 0;        // points (point grids) or active voxels (other grids)
+  bool used = false;         // spume reads its points
+};
+
+struct VdbAttributeInfo {
+  std::string grid, name, type, codec;  // e.g. "particles", "P", "vec3s", "trnc"
+};
+
+struct VdbPointsInfo {
+  std::vector<VdbGridInfo> grids;
+  std::vector<VdbAttributeInfo> attributes;  // of every point grid, in the grids' order
+  std::string velocity_attribute;            // "" without velocities
+  std::string id_attribute;                  // "" without ids
+  std::string choice;                        // which point grids were read, and why
+};
+
+// Reads the points of the point data grid named `grid` ("" for every point data grid in the file,
+// in the file's order). Errors name the file: not a VDB, cut or damaged, no point data grid, no grid
+// of that name, an attribute of a type spume cannot read as velocity or id. Grids that disagree on
+// having velocities or ids are refused (the frame would mix).
+FluidFrame read_vdb_points(const std::filesystem::path& path, const std::string& grid = "",
+                           VdbPointsInfo* info = nullptr);
+
+// True when the file starts with OpenVDB's magic number.
+bool has_vdb_magic(const std::filesystem::path& path);
+
+}  // namespace spume
