@@ -22,6 +22,7 @@ std::string fluid_restart_pattern(const std::filesystem::path& scene_out);
 std::filesystem::path body_track_path(const std::filesystem::path& scene_out);
 std::filesystem::path diffuse_cache_path(const std::filesystem::path& scene_out, int frame);
 std::filesystem::path diffuse_bgeo_path(const std::filesystem::path& scene_out, int frame);
+std::filesystem::path diffuse_vdb_path(const std::filesystem::path& scene_out, int frame);  // diffuse_vdb/diffuse_0000.vdb
 std::filesystem::path fluid_survey_path(const std::filesystem::path& scene_out);
 std::filesystem::path render_stats_path(const std::filesystem::path& scene_out);
 

@@ -85,6 +85,11 @@ void replace_uuid_with_digest(std::string& bytes) {
 
 }  // namespace
 
+std::string vdb_points_format(float voxel_size) {
+  // Bump the layout number when the attributes, codecs or metadata written here change.
+  return str("spume-vdb-points 1, OpenVDB ", OPENVDB_LIBRARY_VERSION_STRING, ", voxel ", voxel_size);
+}
+
 float vdb_points_voxel_size(float particle_radius) { return 2.0f * particle_radius; }
 
 double vdb_position_error(float voxel_size, float coordinate) {

@@ -27,6 +27,9 @@ double vdb_position_error(float voxel_size, float coordinate);
 // 11 significant bits), 2^-25 m/s absolute below half's normal range (6.1e-5).
 double vdb_velocity_error(float component);
 
+// What fixes the bytes besides the frame, for records: "spume-vdb-points 1, OpenVDB 10.0.1, voxel V".
+std::string vdb_points_format(float voxel_size);
+
 // The whole .vdb file as bytes (deterministic: the same for any thread count).
 std::string vdb_points_bytes(const DiffuseFrame& frame, float voxel_size);
 // Written atomically (core/atomic_file.h). Throws Error naming the path on failure; a component
