@@ -155,6 +155,19 @@ TEST_F(VdbOutput, AShorterRangeKeepsTheOthersOnlyWhileTheirCachesAreUnchanged) {
   EXPECT_TRUE(fs::exists(out("diffuse_vdb/" + numbered(6, ".vdb"))));
 }
 
+TEST_F(VdbOutput, AFarmRunsTheSimulationJobWhileTheVdbFilesAreMissing) {
+  ASSERT_EQ(run_spume("simulate " + args()).status, 0);
+  const std::string farm = "farm slurm " + (dir / "scene.json").string() + " --out " + (dir / "out").string() +
+                           " --chunk 4 --set output.vdb=true";
+  CommandResult r = run_spume(farm);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("a simulation job runs first"), std::string::npos) << r.output;
+  ASSERT_EQ(run_spume("simulate " + args("--vdb")).status, 0);
+  r = run_spume(farm);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("no simulation job"), std::string::npos) << r.output;
+}
+
 TEST_F(VdbOutput, SameBytesForOneAndTwoThreads) {
   ASSERT_EQ(run_spume("simulate " + args("--vdb --threads 1", "one")).status, 0);
   ASSERT_EQ(run_spume("simulate " + args("--vdb --threads 2", "two")).status, 0);
