@@ -16,6 +16,7 @@ int simulate(const cli::ParsedArgs& args) {
   if (auto spec = args.value("frames")) frames = cli::parse_frame_range(*spec, "--frames");
   std::vector<std::string> overrides;
   if (args.has("bgeo")) overrides.push_back("output.bgeo=true");
+  if (args.has("vdb")) overrides.push_back("output.vdb=true");
   const SceneSetup setup = load_scene_setup(args, overrides);
   SimulateOptions sim;
   sim.out_root = setup.out_root;
@@ -27,6 +28,8 @@ int simulate(const cli::ParsedArgs& args) {
   if (!setup.quiet) {
     if (result.fluid.reused) std::fprintf(stderr, "fluid: caches are current, solver not run\n");
     if (result.diffuse.reused) std::fprintf(stderr, "diffuse: caches are current, nothing simulated\n");
+    if (setup.sim.write_vdb && result.vdb.written == 0)
+      std::fprintf(stderr, "diffuse_vdb: .vdb files are current, nothing written\n");
   }
   return 0;
 }
@@ -42,6 +45,7 @@ Command cmd_simulate() {
   spec.options.push_back(
       {"frames", "A-B", "simulate only frames A to B, clamped to the scene's (diffuse material starts empty at A)"});
   spec.options.push_back({"bgeo", "", "also write the diffuse frames as BGEO (Houdini, Blender)"});
+  spec.options.push_back({"vdb", "", "also write the diffuse frames as OpenVDB points (Houdini)"});
   spec.options.push_back({"force", "", "simulate even when the caches are current"});
   return {spec, simulate};
 }

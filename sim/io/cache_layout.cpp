@@ -40,6 +40,10 @@ std::filesystem::path diffuse_bgeo_path(const std::filesystem::path& scene_out, 
   return scene_out / "diffuse_bgeo" / numbered_file_name("diffuse", frame, ".bgeo");
 }
 
+std::filesystem::path diffuse_vdb_path(const std::filesystem::path& scene_out, int frame) {
+  return scene_out / "diffuse_vdb" / numbered_file_name("diffuse", frame, ".vdb");
+}
+
 std::filesystem::path fluid_survey_path(const std::filesystem::path& scene_out) { return scene_out / "fluid_survey.json"; }
 std::filesystem::path render_stats_path(const std::filesystem::path& scene_out) { return scene_out / "render_stats.csv"; }
 

@@ -214,7 +214,12 @@ inline constexpr KeySpec bgeo{.path = "output.bgeo", .type = Boolean, .value = {
                               .doc = "also write the diffuse frames as BGEO (Houdini, Blender)"};
 inline constexpr KeySpec fluid_bgeo{.path = "output.fluid_bgeo", .type = Boolean, .value = {0},
                                     .doc = "solver scenes: also write the fluid frames as BGEO"};
-inline constexpr auto all = std::to_array<const KeySpec*>({&bgeo, &fluid_bgeo});
+// Written from the diffuse caches after the diffuse stage, with a record of its own: turning it on or
+// off re-simulates nothing (so it is left out of the diffuse stage's keys, sim_scene.cpp).
+inline constexpr KeySpec vdb{.path = "output.vdb", .type = Boolean, .value = {0},
+                             .doc = "also write the diffuse frames as OpenVDB points (Houdini; positions within "
+                                    "2 r / 131070, velocities as half floats)"};
+inline constexpr auto all = std::to_array<const KeySpec*>({&bgeo, &fluid_bgeo, &vdb});
 }  // namespace output
 
 }  // namespace spume::keys

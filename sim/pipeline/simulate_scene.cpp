@@ -40,7 +40,8 @@ bool scene_simulation_is_current(const SimScene& scene, const SimulateOptions& o
   }
   const auto source = scene_fluid_source(scene, options.out_root);
   const SceneInputs inputs = read_scene_inputs(scene, options.out_root, true);
-  return diffuse_caches_current(scene, inputs, *source, options);
+  if (!diffuse_caches_current(scene, inputs, *source, options)) return false;
+  return diffuse_vdb_current(scene, diffuse_frames_to_run(scene, *source, options), options.out_root / scene.name);
 }
 
 SceneSimulation simulate_scene(const SimScene& scene, const SimulateOptions& options, bool diffuse) {
@@ -51,6 +52,8 @@ SceneSimulation simulate_scene(const SimScene& scene, const SimulateOptions& opt
     const SceneInputs inputs = read_scene_inputs(scene, options.out_root, options.quiet);
     // New fluid frames have new file identities, which the diffuse record compares (io/stage_record.h).
     result.diffuse = run_simulation(scene, inputs, *source, options);
+    result.vdb = export_diffuse_vdb(scene, diffuse_frames_to_run(scene, *source, options),
+                                    options.out_root / scene.name, options.quiet);
   }
   return result;
 }

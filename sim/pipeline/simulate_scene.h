@@ -2,16 +2,19 @@
 // Both simulation stages of a scene, each skipped when its caches are current:
 //   fluid   (solver scenes only) -> OUT/<scene>/fluid/      fluid_stage.h
 //   diffuse                      -> OUT/<scene>/diffuse/    simulate_run.h
+//   then, from the diffuse caches, OpenVDB points (output.vdb) -> OUT/<scene>/diffuse_vdb/  vdb_export.h
 #include <memory>
 
 #include "sim/pipeline/fluid_stage.h"
 #include "sim/pipeline/simulate_run.h"
+#include "sim/pipeline/vdb_export.h"
 
 namespace spume {
 
 struct SceneSimulation {
   FluidStageSummary fluid;     // frames == 0 when the fluid comes from files
   SimulateSummary diffuse;     // frames == 0 when the diffuse stage was not asked for
+  VdbExportSummary vdb;        // output.vdb, after the diffuse stage (vdb_export.h)
 };
 
 // Where the scene's fluid frames are read from: its files, or the solver's caches under out_root.

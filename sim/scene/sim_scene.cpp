@@ -89,6 +89,7 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
   const ParamReader output = root.child("output");
   scene.write_bgeo = output.boolean(k::output::bgeo);
   scene.write_fluid_bgeo = output.boolean(k::output::fluid_bgeo);
+  scene.write_vdb = output.boolean(k::output::vdb);
   if (scene.write_fluid_bgeo && scene.source != FluidSourceKind::Solver)
     output.fail_at("fluid_bgeo", "only scenes with fluid.source \"solver\" write fluid frames");
 
@@ -104,6 +105,7 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
   keys["diffuse"] = root.effective("diffuse");
   keys["domain"] = root.effective("domain");
   keys["output"] = root.effective("output");
+  if (keys["output"].is_object()) keys["output"].erase("vdb");  // made from the diffuse caches, with its own record (pipeline/vdb_export.h)
   scene.diffuse_keys = with_generation(keys);
   return scene;
 }

@@ -54,7 +54,7 @@ std::vector<CommandOptions> documented_commands() {
   };
   return {
       {"run", scene({"--frames", "--overwrite", "--movie", "--force"})},
-      {"simulate", scene({"--frames", "--bgeo", "--force"})},
+      {"simulate", scene({"--frames", "--bgeo", "--vdb", "--force"})},
       {"render", scene({"--frames", "--overwrite", "--movie"})},
       {"lookdev", scene({"--vary", "--frame", "--columns", "--tile-width", "--output"})},
       {"farm chunks", scene({"--chunk", "--frames"})},
