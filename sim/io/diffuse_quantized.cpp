@@ -28,6 +28,51 @@ HugeBuffer<uint32_t> stable_order(const HugeBuffer<uint64_t>& keys, uint64_t max
   return order;
 }
 
+// One particle quantized, in the frame's order; gathered in sorted order with one memory access each.
+struct Packed {
+  uint64_t id;
+  int16_t velocity[3];
+  uint16_t life;
+  uint8_t offset[3];
+  uint8_t type;
+};
+
+// Rounds half away from zero without a library call (x within +-2^62).
+inline int64_t round_to_int(double x) { return int64_t(x + (x >= 0.0 ? 0.5 : -0.5)); }
+
+struct Bounds {
+  std::array<double, 3> lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+  double vmax = 0.0, lmin = INFINITY, lmax = -INFINITY;
+  void merge(const Bounds& b) {
+    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], b.lo[a]), hi[a] = std::max(hi[a], b.hi[a]);
+    vmax = std::max(vmax, b.vmax), lmin = std::min(lmin, b.lmin), lmax = std::max(lmax, b.lmax);
+  }
+};
+
+// Minima and maxima are exact whatever the split, so the chunks may be any.
+Bounds frame_bounds(const DiffuseFrame& frame) {
+  const size_t n = frame.size(), chunks = std::max<size_t>(1, n / kGrain);
+  std::vector<Bounds> part(chunks);
+  parallel_for(chunks, 1, [&](size_t cb, size_t ce) {
+    for (size_t c = cb; c < ce; ++c) {
+      Bounds& b = part[c];
+      for (size_t i = c * n / chunks, end = (c + 1) * n / chunks; i < end; ++i) {
+        for (int a = 0; a < 3; ++a) {
+          b.lo[a] = std::min(b.lo[a], double(frame.positions[i][a]));
+          b.hi[a] = std::max(b.hi[a], double(frame.positions[i][a]));
+          b.vmax = std::max(b.vmax, std::abs(double(frame.velocities[i][a])));
+        }
+        b.lmin = std::min(b.lmin, double(frame.lifetimes[i]));
+        b.lmax = std::max(b.lmax, double(frame.lifetimes[i]));
+      }
+    }
+  });
+  Bounds all;
+  for (const Bounds& b : part) all.merge(b);
+  if (n == 0) all = Bounds{{0, 0, 0}, {0, 0, 0}, 0.0, 0.0, 0.0};
+  return all;
+}
+
 }  // namespace
 
 std::optional<QuantizedDiffuse> quantize_diffuse(const DiffuseFrame& frame, double position_step) {
@@ -36,45 +81,49 @@ std::optional<QuantizedDiffuse> quantize_diffuse(const DiffuseFrame& frame, doub
   QuantizedDiffuse out;
   DiffuseQuantization& q = out.q;
   q.position_step = position_step;
-  std::array<double, 3> hi{};
-  double vmax = 0.0, lmin = 0.0, lmax = 0.0;
-  if (n > 0) {
-    for (int a = 0; a < 3; ++a) q.origin[a] = hi[a] = frame.positions[0][a];
-    lmin = lmax = frame.lifetimes[0];
-  }
-  for (size_t i = 0; i < n; ++i) {
-    for (int a = 0; a < 3; ++a) {
-      q.origin[a] = std::min(q.origin[a], double(frame.positions[i][a]));
-      hi[a] = std::max(hi[a], double(frame.positions[i][a]));
-      vmax = std::max(vmax, std::abs(double(frame.velocities[i][a])));
-    }
-    lmin = std::min(lmin, double(frame.lifetimes[i]));
-    lmax = std::max(lmax, double(frame.lifetimes[i]));
-  }
+  const Bounds bounds = frame_bounds(frame);
   std::array<uint64_t, 3> qmax{};
   uint64_t cells = 1;
   for (int a = 0; a < 3; ++a) {
-    const double span = (hi[a] - q.origin[a]) / position_step;
+    q.origin[a] = bounds.lo[a];
+    const double span = (bounds.hi[a] - bounds.lo[a]) / position_step;
     if (!(span <= kMaxSteps)) return std::nullopt;
-    qmax[a] = uint64_t(std::llround(span));
+    qmax[a] = uint64_t(round_to_int(span));
     q.cells[a] = uint32_t((qmax[a] >> kCellOffsetBits) + 1);
     if (cells > kMaxCells / q.cells[a]) return std::nullopt;
     cells *= q.cells[a];
   }
-  q.velocity_step = vmax / 32767.0;
-  q.life_origin = lmin;
-  q.life_step = (lmax - lmin) / 65535.0;
+  q.velocity_step = bounds.vmax / 32767.0;
+  q.life_origin = bounds.lmin;
+  q.life_step = (bounds.lmax - bounds.lmin) / 65535.0;
 
-  // A particle's steps from the origin along axis a (computed again where needed: cheaper than storing).
-  auto steps = [&](size_t i, int a) {
-    const double s = double(std::llround((double(frame.positions[i][a]) - q.origin[a]) / position_step));
-    return uint32_t(std::clamp<double>(s, 0.0, double(qmax[a])));
-  };
+  // Each particle's cell key and quantized values, in the frame's order.
+  constexpr uint32_t kOffsetMask = (1u << kCellOffsetBits) - 1;
+  // Reciprocals: a product's rounding (half an ulp of a double) is far below the float rounding the
+  // stated bounds allow for.
+  const double per_step = 1.0 / position_step;
+  const double per_velocity_step = q.velocity_step > 0.0 ? 1.0 / q.velocity_step : 0.0;
+  const double per_life_step = q.life_step > 0.0 ? 1.0 / q.life_step : 0.0;
   HugeBuffer<uint64_t> keys(n);
+  HugeBuffer<Packed> packed(n);
   parallel_for(n, kGrain, [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i)
-      keys[i] = (steps(i, 0) >> kCellOffsetBits) +
-                q.cells[0] * ((steps(i, 1) >> kCellOffsetBits) + uint64_t(q.cells[1]) * (steps(i, 2) >> kCellOffsetBits));
+    for (size_t i = begin; i < end; ++i) {
+      Packed& p = packed[i];
+      uint64_t cell[3];
+      for (int a = 0; a < 3; ++a) {
+        const int64_t s = round_to_int((double(frame.positions[i][a]) - q.origin[a]) * per_step);
+        const uint64_t steps = uint64_t(std::clamp<int64_t>(s, 0, int64_t(qmax[a])));
+        cell[a] = steps >> kCellOffsetBits;
+        p.offset[a] = uint8_t(steps & kOffsetMask);
+        const double v = double(frame.velocities[i][a]) * per_velocity_step;
+        p.velocity[a] = int16_t(std::clamp<int64_t>(round_to_int(v), -32767, 32767));
+      }
+      const double l = (double(frame.lifetimes[i]) - q.life_origin) * per_life_step;
+      p.life = uint16_t(std::clamp<int64_t>(round_to_int(l), 0, 65535));
+      p.id = frame.ids[i];
+      p.type = uint8_t(frame.types[i]);
+      keys[i] = cell[0] + q.cells[0] * (cell[1] + uint64_t(q.cells[1]) * cell[2]);
+    }
   });
   const HugeBuffer<uint32_t> order = stable_order(keys, cells - 1);
 
@@ -93,25 +142,18 @@ std::optional<QuantizedDiffuse> quantize_diffuse(const DiffuseFrame& frame, doub
   out.lifetimes.resize(n);
   out.ids.resize(n);
   out.types.resize((n + 3) / 4);
-  constexpr uint32_t kOffsetMask = (1u << kCellOffsetBits) - 1;
-  parallel_for(n, kGrain, [&](size_t begin, size_t end) {
-    for (size_t k = begin; k < end; ++k) {
-      const size_t i = order[k];
-      for (int a = 0; a < 3; ++a) {
-        out.offsets[a * n + k] = uint8_t(steps(i, a) & kOffsetMask);
-        const double v = q.velocity_step > 0.0 ? double(frame.velocities[i][a]) / q.velocity_step : 0.0;
-        out.velocities[a * n + k] = int16_t(std::clamp<long long>(std::llround(v), -32767, 32767));
-      }
-      const double l = q.life_step > 0.0 ? (double(frame.lifetimes[i]) - lmin) / q.life_step : 0.0;
-      out.lifetimes[k] = uint16_t(std::clamp<long long>(std::llround(l), 0, 65535));
-      out.ids[k] = frame.ids[i];
-    }
-  });
-  parallel_for(out.types.size(), kGrain, [&](size_t begin, size_t end) {
+  // In blocks of 4 particles, so each type byte is written by one iteration.
+  parallel_for(out.types.size(), kGrain / 4, [&](size_t begin, size_t end) {
     for (size_t b = begin; b < end; ++b) {
-      uint8_t packed = 0;
-      for (size_t k = 4 * b; k < std::min(n, 4 * b + 4); ++k) packed |= uint8_t(uint8_t(frame.types[order[k]]) << (2 * (k % 4)));
-      out.types[b] = packed;
+      uint8_t types = 0;
+      for (size_t k = 4 * b; k < std::min(n, 4 * b + 4); ++k) {
+        const Packed& p = packed[order[k]];
+        for (int a = 0; a < 3; ++a) out.offsets[a * n + k] = p.offset[a], out.velocities[a * n + k] = p.velocity[a];
+        out.lifetimes[k] = p.life;
+        out.ids[k] = p.id;
+        types |= uint8_t(p.type << (2 * (k % 4)));
+      }
+      out.types[b] = types;
     }
   });
   return out;
@@ -143,6 +185,13 @@ DiffuseFrame dequantize_diffuse(const QuantizedDiffuse& in, const std::string& w
   if (first[occupied] != n) fail(where, ": corrupt: the occupied cells hold ", first[occupied], " particles; the header says ", n);
 
   DiffuseFrame frame;
+  // Fresh output memory costs a page fault per 4 KiB on first touch: ask for 2 MiB pages first.
+  frame.reserve(n);
+  advise_huge_pages(frame.ids.data(), n * sizeof(uint64_t));
+  advise_huge_pages(frame.positions.data(), n * sizeof(Vec3f));
+  advise_huge_pages(frame.velocities.data(), n * sizeof(Vec3f));
+  advise_huge_pages(frame.lifetimes.data(), n * sizeof(float));
+  advise_huge_pages(frame.types.data(), n);
   frame.resize(n);
   parallel_for(occupied, 1, [&](size_t cb, size_t ce) {
     for (size_t c = cb; c < ce; ++c) {

@@ -39,8 +39,9 @@ double position_step() {
 
 fs::path scratch(const char* name) { return fs::temp_directory_path() / (std::string("spume_bench_") + name); }
 
-// Version 1 exactly as spume wrote it: header, the five arrays, CRC.
+// Version 1 exactly as spume wrote it: validation, header, the five arrays, CRC.
 void write_raw(const fs::path& path, const DiffuseFrame& f) {
+  f.validate(path.string());
   std::string header("SPUMEDF1", 8);
   io::store(header, kRawDiffuseCacheVersion, io::Endian::Little);
   io::store(header, int32_t(f.index), io::Endian::Little);
