@@ -12,11 +12,12 @@
 namespace spume {
 namespace {
 
-// zstd at its fastest level: on shuffled quantized columns it stores a third less than LZ4 for about
-// the same time, and decompresses at several hundred MB/s a core.
+// LZ4: on a 1.2M-particle dam-break frame's quantized columns it stores 11.66 bytes a particle against
+// zstd's 10.95 (level 1), and compresses and decompresses about twice as fast; the goal is 12 bytes a
+// particle, written and read faster than the raw 37. The level only sets LZ4's acceleration here.
 constexpr int kLevel = 1;
 constexpr const char* kCodec = BLOSC_LZ4_COMPNAME;
-constexpr size_t kBlockBytes = 256 * 1024;  // fixed: Blosc's own choice would depend on the level only, but say it
+constexpr size_t kBlockBytes = 256 * 1024;  // fixed, not Blosc's choice: the bytes must not depend on it
 constexpr size_t kBloscHeader = BLOSC_MIN_HEADER_LENGTH;
 
 size_t chunk_count(size_t bytes) { return (bytes + kColumnChunkBytes - 1) / kColumnChunkBytes; }
