@@ -14,7 +14,7 @@ namespace {
 
 // LZ4: on a 1.2M-particle dam-break frame's quantized columns it stores 11.66 bytes a particle against
 // zstd's 10.95 (level 1), and compresses and decompresses about twice as fast; the goal is 12 bytes a
-// particle, written and read faster than the raw 37. The level only sets LZ4's acceleration here.
+// particle, written and read faster than the raw 37.
 constexpr int kLevel = 1;
 constexpr const char* kCodec = BLOSC_LZ4_COMPNAME;
 constexpr size_t kBlockBytes = 256 * 1024;  // fixed, not Blosc's choice: the bytes must not depend on it
