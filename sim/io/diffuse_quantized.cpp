@@ -137,6 +137,7 @@ std::optional<QuantizedDiffuse> quantize_diffuse(const DiffuseFrame& frame, doub
     }
     ++out.cell_counts.back();
   }
+  keys = HugeBuffer<uint64_t>();  // 8 bytes a particle less at the peak (15M particles: 120 MB)
   out.offsets.resize(3 * n);
   out.velocities.resize(3 * n);
   out.lifetimes.resize(n);
