@@ -1,6 +1,6 @@
 #pragma once
 // Compressed columns for spume's caches: one array of fixed-size values (ids, quantized positions...)
-// byte- or bit-shuffled and compressed with Blosc (its LZ4 codec), cut into chunks of a fixed raw size
+// byte- or bit-shuffled and compressed with Blosc (its zstd codec), cut into chunks of a fixed raw size
 // (kColumnChunkBytes) that are compressed in parallel. The chunking depends on the column alone, and
 // each chunk is compressed by one thread, so the bytes are the same for any thread count.
 //

@@ -24,7 +24,7 @@
 //   offset 60  f64[3]   position origin (m), then f64 position step (m), f64 velocity step (m/s),
 //                       f64 life origin (s), f64 life step (s): all 0 when exact
 //   offset 108 u32[3]   cells per axis, then offset 120 u64 occupied cells (0 when exact)
-//   then columns (io/column_codec.h: shuffled, LZ4-compressed Blosc chunks), in this order:
+//   then columns (io/column_codec.h: shuffled, zstd-compressed Blosc chunks), in this order:
 //     exact:     ids u64[n], positions f32[3n], velocities f32[3n], lifetimes f32[n], types u8[n]
 //     quantized: cell key steps u64[cells], cell counts u32[cells], position offsets u8[3n] (x, y, z
 //                planes), velocities i16[3n] (planes), lifetimes u16[n], types (2 bits) u8[ceil(n/4)], ids u64[n]
