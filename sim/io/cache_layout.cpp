@@ -36,6 +36,10 @@ std::filesystem::path diffuse_cache_path(const std::filesystem::path& scene_out,
   return scene_out / "diffuse" / numbered_file_name("diffuse", frame, ".spd");
 }
 
+std::filesystem::path diffuse_restart_path(const std::filesystem::path& scene_out, int frame) {
+  return scene_out / "diffuse" / numbered_file_name("restart", frame, ".spd");
+}
+
 std::filesystem::path diffuse_bgeo_path(const std::filesystem::path& scene_out, int frame) {
   return scene_out / "diffuse_bgeo" / numbered_file_name("diffuse", frame, ".bgeo");
 }

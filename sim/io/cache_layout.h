@@ -22,6 +22,8 @@ std::filesystem::path fluid_restart_path(const std::filesystem::path& scene_out,
 std::string fluid_restart_pattern(const std::filesystem::path& scene_out);
 std::filesystem::path body_track_path(const std::filesystem::path& scene_out);
 std::filesystem::path diffuse_cache_path(const std::filesystem::path& scene_out, int frame);
+// The diffuse state of a run's last frame, exact (the caches are quantized): a later run continues from it.
+std::filesystem::path diffuse_restart_path(const std::filesystem::path& scene_out, int frame);
 std::filesystem::path diffuse_bgeo_path(const std::filesystem::path& scene_out, int frame);
 std::filesystem::path diffuse_vdb_path(const std::filesystem::path& scene_out, int frame);  // diffuse_vdb/diffuse_0000.vdb
 std::filesystem::path fluid_survey_path(const std::filesystem::path& scene_out);

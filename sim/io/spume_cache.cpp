@@ -6,11 +6,15 @@
 #include <bit>
 #include <cctype>
 #include <cmath>
+#include <cstring>
+#include <optional>
 #include <fstream>
 #include <ostream>
 #include <system_error>
 
+#include "sim/io/column_codec.h"
 #include "sim/io/crc_file.h"
+#include "sim/io/diffuse_quantized.h"
 
 #include "sim/core/atomic_file.h"
 #include "sim/core/error.h"
@@ -31,7 +35,8 @@ static_assert(sizeof(DiffuseType) == 1);
 constexpr char kFluidMagic[] = "SPUMEFL1";
 constexpr char kDiffuseMagic[] = "SPUMEDF1";
 constexpr size_t kFluidHeaderSize = 40;
-constexpr size_t kDiffuseHeaderSize = 56;
+constexpr size_t kDiffuseHeaderSize = 56;        // version 1
+constexpr size_t kCompactDiffuseHeaderSize = 136;  // version 2
 constexpr uint32_t kKnownFlags = kCacheHasVelocities | kCacheHasIds | kCacheHasMasses;
 
 
@@ -120,14 +125,8 @@ FluidCacheHeader read_fluid_header(CrcReader& r) {
   return out;
 }
 
-DiffuseCacheHeader read_diffuse_header(CrcReader& r) {
-  const std::string bytes = r.header(kDiffuseHeaderSize, kDiffuseMagic, "diffuse");
-  ByteReader h(bytes, r.where);
-  h.skip(8, "magic");
-  DiffuseCacheHeader out;
-  out.version = h.read<uint32_t>("version");
-  if (out.version != kDiffuseCacheVersion)
-    fail(r.where, ": diffuse cache version ", out.version, "; this build reads version ", kDiffuseCacheVersion);
+// Frame index, time and the counts, which both versions store alike after their version.
+void read_diffuse_counts(ByteReader& h, const std::string& where, DiffuseCacheHeader& out) {
   out.frame_index = h.read<int32_t>("frame index");
   out.time = h.read<double>("time");
   out.count = h.read<uint64_t>("count");
@@ -136,13 +135,145 @@ DiffuseCacheHeader read_diffuse_header(CrcReader& r) {
     c = h.read<uint64_t>("count per type");
     sum += c;
     if (c > out.count || sum > out.count)
-      fail(r.where, ": counts per type exceed the particle count ", out.count, " (corrupt header)");
+      fail(where, ": counts per type exceed the particle count ", out.count, " (corrupt header)");
   }
   if (sum != out.count)
-    fail(r.where, ": counts per type sum to ", sum, " but the particle count is ", out.count, " (corrupt header)");
-  if (!std::isfinite(out.time)) fail(r.where, ": time ", out.time, " in the header must be finite");
+    fail(where, ": counts per type sum to ", sum, " but the particle count is ", out.count, " (corrupt header)");
+  if (!std::isfinite(out.time)) fail(where, ": time ", out.time, " in the header must be finite");
+}
+
+// Version 1: the raw layout (no longer written, still read).
+DiffuseCacheHeader read_raw_diffuse_header(CrcReader& r) {
+  const std::string bytes = r.header(kDiffuseHeaderSize, kDiffuseMagic, "diffuse");
+  ByteReader h(bytes, r.where);
+  h.skip(8, "magic");
+  DiffuseCacheHeader out;
+  out.version = h.read<uint32_t>("version");
+  read_diffuse_counts(h, r.where, out);
   r.check_size(kDiffuseHeaderSize, out.count, kDiffuseBytesPerParticle);
   return out;
+}
+
+DiffuseFrame read_raw_diffuse_cache(const std::filesystem::path& path, DiffuseCacheHeader& h) {
+  CrcReader r(path);
+  h = read_raw_diffuse_header(r);
+  const size_t n = size_t(h.count);
+  DiffuseFrame frame;
+  frame.index = h.frame_index;
+  frame.time = h.time;
+  r.read_array(frame.ids, n, "ids");
+  r.read_array(frame.positions, n, "positions");
+  r.read_array(frame.velocities, n, "velocities");
+  r.read_array(frame.lifetimes, n, "lifetimes");
+  r.read_array(frame.types, n, "types");
+  r.check_crc();
+  return frame;
+}
+
+// The version a diffuse cache says it is (0 when the file is too short or not a diffuse cache: the
+// version 1 reader then says what is wrong).
+uint32_t diffuse_cache_version(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  char start[12];
+  if (!in.read(start, sizeof start) || std::string_view(start, 8) != kDiffuseMagic) return 0;
+  return io::load<uint32_t>(start + 8, Endian::Little);
+}
+
+void check_known_diffuse_version(uint32_t version, const std::filesystem::path& path) {
+  if (version != kRawDiffuseCacheVersion && version != kDiffuseCacheVersion)
+    fail(path.string(), ": diffuse cache version ", version, "; this build reads versions ", kRawDiffuseCacheVersion,
+         " and ", kDiffuseCacheVersion, " (a newer spume wrote it: use that, or rerun the diffuse stage with --force)");
+}
+
+// Version 2, the compact layout: header (spume_cache.h), then the columns.
+DiffuseCacheHeader read_compact_diffuse_header(ByteReader& h) {
+  h.skip(8, "magic");
+  DiffuseCacheHeader out;
+  out.version = h.read<uint32_t>("version");
+  read_diffuse_counts(h, h.where(), out);
+  const uint32_t encoding = h.read<uint32_t>("encoding");
+  if (encoding > 1) fail(h.where(), ": encoding ", encoding, "; allowed 0 exact, 1 quantized");
+  out.quantized = encoding == 1;
+  DiffuseQuantization& q = out.quantization;
+  for (double& o : q.origin) o = h.read<double>("origin");
+  q.position_step = h.read<double>("position step");
+  q.velocity_step = h.read<double>("velocity step");
+  q.life_origin = h.read<double>("life origin");
+  q.life_step = h.read<double>("life step");
+  for (uint32_t& c : q.cells) c = h.read<uint32_t>("cells");
+  out.occupied_cells = h.read<uint64_t>("occupied cells");
+  const bool finite = std::isfinite(q.origin[0]) && std::isfinite(q.origin[1]) && std::isfinite(q.origin[2]) &&
+                      std::isfinite(q.position_step) && std::isfinite(q.velocity_step) &&
+                      std::isfinite(q.life_origin) && std::isfinite(q.life_step);
+  if (!finite || q.position_step < 0.0 || q.velocity_step < 0.0 || q.life_step < 0.0 ||
+      (out.quantized && q.position_step == 0.0))
+    fail(h.where(), ": corrupt: quantization origin / steps must be finite, the steps >= 0 (position step > 0)");
+  if (out.occupied_cells > out.count) fail(h.where(), ": corrupt: ", out.occupied_cells, " occupied cells for ", out.count, " particles");
+  return out;
+}
+
+// The id column alone takes 8 bytes a particle in chunks of at most kColumnChunkBytes, each at least a
+// 16-byte Blosc header: a count the file cannot hold fails before anything is allocated.
+void check_count_fits(const DiffuseCacheHeader& h, uint64_t file_size, const std::string& where) {
+  const uint64_t chunks_at_least = h.count / (kColumnChunkBytes / 8);
+  if (chunks_at_least > file_size / 16)
+    fail(where, ": particle count ", h.count, " does not fit the file size ", file_size, " bytes (truncated or corrupt header)");
+}
+
+template <typename Array>
+void read_values(ByteReader& r, Array& v, size_t n, const char* what) {
+  v.resize(n);
+  read_column(r, v.data(), n * sizeof(v[0]), what);
+}
+
+// The whole file, into memory that is not zero-filled first.
+HugeBuffer<char> read_whole_file(const std::filesystem::path& path) {
+  std::error_code ec;
+  const uint64_t size = std::filesystem::file_size(path, ec);
+  if (ec) fail(path.string(), ": cannot determine file size: ", ec.message());
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path.string(), ": cannot open for reading");
+  HugeBuffer<char> bytes{size_t(size)};
+  if (size > 0 && !in.read(bytes.data(), std::streamsize(size))) fail(path.string(), ": read failed (file changed or unreadable)");
+  return bytes;
+}
+
+DiffuseFrame read_compact_diffuse_cache(const std::filesystem::path& path, DiffuseCacheHeader& h) {
+  const std::string where = path.string();
+  const HugeBuffer<char> bytes = read_whole_file(path);
+  if (bytes.size() < kCompactDiffuseHeaderSize + 4)
+    fail(where, ": truncated: ", bytes.size(), " bytes, shorter than the ", kCompactDiffuseHeaderSize,
+         "-byte header and the CRC");
+  uint32_t stored = 0;
+  std::memcpy(&stored, bytes.data() + bytes.size() - 4, 4);
+  const uint32_t computed = crc32_update(crc32_start(), bytes.data(), bytes.size() - 4);
+  if (stored != computed)
+    fail(where, ": corrupt: CRC-32 mismatch (stored ", std::hex, stored, ", computed ", computed, ")");
+  ByteReader r(std::string_view(bytes.data(), bytes.size() - 4), where);
+  h = read_compact_diffuse_header(r);
+  check_count_fits(h, bytes.size(), where);
+  const size_t n = size_t(h.count);
+  DiffuseFrame frame;
+  if (h.quantized) {
+    QuantizedDiffuse q;
+    q.q = h.quantization;
+    read_values(r, q.cell_key_steps, size_t(h.occupied_cells), "cell");
+    read_values(r, q.cell_counts, size_t(h.occupied_cells), "cell count");
+    read_values(r, q.offsets, 3 * n, "position");
+    read_values(r, q.velocities, 3 * n, "velocity");
+    read_values(r, q.lifetimes, n, "lifetime");
+    read_values(r, q.types, (n + 3) / 4, "type");
+    read_values(r, q.ids, n, "id");
+    frame = dequantize_diffuse(q, where);
+  } else {
+    read_values(r, frame.ids, n, "id");
+    read_values(r, frame.positions, n, "position");
+    read_values(r, frame.velocities, n, "velocity");
+    read_values(r, frame.lifetimes, n, "lifetime");
+    read_values(r, frame.types, n, "type");
+  }
+  if (!r.at_end()) fail(where, ": corrupt: ", r.remaining(), " unexpected trailing bytes after the columns");
+  return frame;
 }
 
 }  // namespace
@@ -187,43 +318,81 @@ FluidCacheHeader peek_fluid_cache(const std::filesystem::path& path) {
   return read_fluid_header(r);
 }
 
-void write_diffuse_cache(const std::filesystem::path& path, const DiffuseFrame& frame) {
+void write_diffuse_cache(const std::filesystem::path& path, const DiffuseFrame& frame, double position_step) {
   frame.validate(path.string());
-  std::string header(kDiffuseMagic, 8);
-  io::store(header, kDiffuseCacheVersion, Endian::Little);
-  io::store(header, int32_t(frame.index), Endian::Little);
-  io::store(header, frame.time, Endian::Little);
-  io::store(header, uint64_t(frame.size()), Endian::Little);
-  for (size_t c : frame.count_by_type()) io::store(header, uint64_t(c), Endian::Little);
-  write_crc_file(path, header, frame.ids, frame.positions, frame.velocities, frame.lifetimes, frame.types);
+  if (!std::isfinite(position_step) || position_step < 0.0)
+    fail(path.string(), ": position step ", position_step, " m; must be finite and >= 0 (0: exact)");
+  const std::optional<QuantizedDiffuse> q =
+      position_step > 0.0 ? quantize_diffuse(frame, position_step) : std::nullopt;
+  const DiffuseQuantization quantization = q ? q->q : DiffuseQuantization{};
+  const size_t n = frame.size();
+  CacheBytes out;
+  out.reserve(kCompactDiffuseHeaderSize + 4 + column_bound(8 * n) + 2 * column_bound(12 * n) +
+              column_bound(4 * n) + column_bound(n) + (q ? 2 * column_bound(12 * q->cell_counts.size()) : 0));
+  out.append(kDiffuseMagic, 8);
+  out.store(kDiffuseCacheVersion);
+  out.store(int32_t(frame.index));
+  out.store(frame.time);
+  out.store(uint64_t(n));
+  for (size_t c : frame.count_by_type()) out.store(uint64_t(c));
+  out.store(uint32_t(q ? 1 : 0));
+  for (double o : quantization.origin) out.store(o);
+  out.store(quantization.position_step);
+  out.store(quantization.velocity_step);
+  out.store(quantization.life_origin);
+  out.store(quantization.life_step);
+  for (uint32_t c : quantization.cells) out.store(c);
+  out.store(uint64_t(q ? q->cell_counts.size() : 0));
+  // Byte shuffle, or bit shuffle where the values' high bits are mostly alike: the offsets use 7 of 8
+  // bits, velocities are small against the frame's largest, ids are 64-bit numbers of ~30 bits of
+  // information (measured on a dam break frame: 0.6, 0.1 and 0.3 bytes a particle less).
+  auto column = [&](const auto& v, bool bit_shuffle = false) {
+    append_column(out, v.data(), v.size() * sizeof(v[0]), sizeof(v[0]), bit_shuffle);
+  };
+  auto float_column = [&](const std::vector<Vec3f>& v) { append_column(out, v.data(), v.size() * 12, 4); };
+  if (q) {
+    column(q->cell_key_steps), column(q->cell_counts), column(q->offsets, true), column(q->velocities, true);
+    column(q->lifetimes), column(q->types), column(q->ids, true);
+  } else {
+    column(frame.ids, true), float_column(frame.positions), float_column(frame.velocities), column(frame.lifetimes);
+    column(frame.types);
+  }
+  const uint32_t crc = crc32_update(crc32_start(), out.data(), out.size());
+  out.store(crc);
+  write_file_atomically(path, [&](std::ostream& file) { file.write(out.data(), std::streamsize(out.size())); });
 }
 
 DiffuseFrame read_diffuse_cache(const std::filesystem::path& path, DiffuseCacheHeader* header) {
-  CrcReader r(path);
-  const DiffuseCacheHeader h = read_diffuse_header(r);
-  const size_t n = size_t(h.count);
-  DiffuseFrame frame;
+  const uint32_t version = diffuse_cache_version(path);
+  if (version != 0) check_known_diffuse_version(version, path);
+  DiffuseCacheHeader h;
+  DiffuseFrame frame = version == kDiffuseCacheVersion ? read_compact_diffuse_cache(path, h)
+                                                       : read_raw_diffuse_cache(path, h);
   frame.index = h.frame_index;
   frame.time = h.time;
-  r.read_array(frame.ids, n, "ids");
-  r.read_array(frame.positions, n, "positions");
-  r.read_array(frame.velocities, n, "velocities");
-  r.read_array(frame.lifetimes, n, "lifetimes");
-  r.read_array(frame.types, n, "types");
-  r.check_crc();
-  frame.validate(r.where);  // also rejects types >= 3 before they are counted below
+  frame.validate(path.string());  // also rejects types >= 3 before they are counted below
   const auto counts = frame.count_by_type();
   for (int t = 0; t < kDiffuseTypeCount; ++t)
     if (counts[t] != h.count_by_type[t])
-      fail(r.where, ": header says ", h.count_by_type[t], " ", to_string(DiffuseType(t)), " particles but the data has ",
-           counts[t], " (corrupt)");
+      fail(path.string(), ": header says ", h.count_by_type[t], " ", to_string(DiffuseType(t)),
+           " particles but the data has ", counts[t], " (corrupt)");
   if (header) *header = h;
   return frame;
 }
 
 DiffuseCacheHeader peek_diffuse_cache(const std::filesystem::path& path) {
+  const uint32_t version = diffuse_cache_version(path);
+  if (version != 0) check_known_diffuse_version(version, path);
+  if (version != kDiffuseCacheVersion) {
+    CrcReader r(path);
+    return read_raw_diffuse_header(r);
+  }
   CrcReader r(path);
-  return read_diffuse_header(r);
+  const std::string bytes = r.header(kCompactDiffuseHeaderSize, kDiffuseMagic, "diffuse");
+  ByteReader h(bytes, r.where);
+  DiffuseCacheHeader out = read_compact_diffuse_header(h);
+  check_count_fits(out, r.file_size, r.where);
+  return out;
 }
 
 }  // namespace spume

@@ -13,27 +13,42 @@
 //     ids u32[n] (if bit 1), positions f32[3n], velocities f32[3n] (if bit 0), masses f32[n] (if bit 2)
 //   then u32 CRC-32 (zlib crc32) of every byte before it.
 //
-// Diffuse cache (.spd), header 56 bytes:
+// Diffuse cache (.spd), version 2 (compact), header 136 bytes:
 //   offset  0  char[8]  magic "SPUMEDF1"
-//   offset  8  u32      version (1)
+//   offset  8  u32      version (2)
 //   offset 12  i32      frame index
 //   offset 16  f64      time (s)
 //   offset 24  u64      particle count n
 //   offset 32  u64[3]   count per type (spray, foam, bubble); they sum to n
-//   then ids u64[n], positions f32[3n], velocities f32[3n], lifetimes f32[n], types u8[n] (0..2)
+//   offset 56  u32      encoding: 0 exact, 1 quantized (io/diffuse_quantized.h states the errors)
+//   offset 60  f64[3]   position origin (m), then f64 position step (m), f64 velocity step (m/s),
+//                       f64 life origin (s), f64 life step (s): all 0 when exact
+//   offset 108 u32[3]   cells per axis, then offset 120 u64 occupied cells (0 when exact)
+//   then columns (io/column_codec.h: shuffled, zstd-compressed Blosc chunks), in this order:
+//     exact:     ids u64[n], positions f32[3n], velocities f32[3n], lifetimes f32[n], types u8[n]
+//     quantized: cell key steps u64[cells], cell counts u32[cells], position offsets u8[3n] (x, y, z
+//                planes), velocities i16[3n] (planes), lifetimes u16[n], types (2 bits) u8[ceil(n/4)], ids u64[n]
 //   then u32 CRC-32 of every byte before it.
+// Quantized caches store particles sorted by cell; exact ones in the frame's order.
 //
-// The file size is fully determined by the header, so readers check it before allocating anything.
+// Version 1 (raw, 37 bytes a particle; still read, no longer written), header 56 bytes: the first 56
+// bytes as above, then ids u64[n], positions f32[3n], velocities f32[3n], lifetimes f32[n], types u8[n]
+// (0..2), then the CRC-32.
+//
+// A fluid cache's (and a version 1 diffuse cache's) size is fully determined by the header, so readers
+// check it before allocating anything; a version 2 diffuse cache is checked against its CRC first.
 #include <array>
 #include <cstdint>
 #include <filesystem>
 
 #include "sim/core/frames.h"
+#include "sim/io/diffuse_quantized.h"
 
 namespace spume {
 
 constexpr uint32_t kFluidCacheVersion = 1;
-constexpr uint32_t kDiffuseCacheVersion = 1;
+constexpr uint32_t kDiffuseCacheVersion = 2;     // written
+constexpr uint32_t kRawDiffuseCacheVersion = 1;  // still read
 enum FluidCacheFlags : uint32_t { kCacheHasVelocities = 1u, kCacheHasIds = 2u, kCacheHasMasses = 4u };
 
 struct FluidCacheHeader {
@@ -51,6 +66,9 @@ struct DiffuseCacheHeader {
   double time = 0.0;
   uint64_t count = 0;
   std::array<uint64_t, kDiffuseTypeCount> count_by_type{};
+  bool quantized = false;            // version 2: positions, velocities and lifetimes quantized
+  DiffuseQuantization quantization;  // version 2 quantized only
+  uint64_t occupied_cells = 0;
 };
 
 // Writes frame (its index and time go into the header) with the given particle radius.
@@ -60,7 +78,11 @@ FluidFrame read_fluid_cache(const std::filesystem::path& path, FluidCacheHeader*
 // Header only, checked against the file size (for `spume info`).
 FluidCacheHeader peek_fluid_cache(const std::filesystem::path& path);
 
-void write_diffuse_cache(const std::filesystem::path& path, const DiffuseFrame& frame);
+// position_step 0 writes the frame exactly (compressed, in its order); > 0 quantizes it with that step
+// (the pipeline uses the fluid particle radius / kPositionStepsPerRadius), sorted by cell. A frame too
+// large for the quantization grid (diffuse_quantized.h) is written exactly.
+void write_diffuse_cache(const std::filesystem::path& path, const DiffuseFrame& frame, double position_step = 0.0);
+// Reads versions 1 and 2; any other version is refused naming the file and what to do.
 DiffuseFrame read_diffuse_cache(const std::filesystem::path& path, DiffuseCacheHeader* header = nullptr);
 DiffuseCacheHeader peek_diffuse_cache(const std::filesystem::path& path);
 

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <numbers>
+#include <optional>
 
 #include "sim/pipeline/body_track_file.h"
 #include "sim/pipeline/cache_state.h"
@@ -23,6 +24,31 @@
 namespace spume {
 namespace {
 
+// The exact diffuse state at `frame` to continue from: the restart file the run that made it wrote,
+// or its cache when that is exact (version 1, raw); std::nullopt when neither exists (a quantized
+// cache alone would continue from rounded positions, and the continued frames would differ from one
+// uninterrupted run's).
+std::optional<DiffuseFrame> exact_diffuse_state(const std::filesystem::path& scene_out, int frame) {
+  const std::filesystem::path restart = diffuse_restart_path(scene_out, frame);
+  if (std::filesystem::is_regular_file(restart)) {
+    DiffuseFrame state = read_diffuse_cache(restart);
+    if (state.index == frame) return state;
+  }
+  const std::filesystem::path cache = diffuse_cache_path(scene_out, frame);
+  if (!peek_diffuse_cache(cache).quantized) return read_diffuse_cache(cache);
+  return std::nullopt;
+}
+
+// Restart files other than `keep`'s (a frame number; -1 keeps none): earlier runs' last frames.
+void remove_diffuse_restarts(const std::filesystem::path& scene_out, int keep) {
+  std::error_code ec;
+  const std::string kept = keep >= 0 ? diffuse_restart_path(scene_out, keep).filename().string() : "";
+  for (const auto& entry : std::filesystem::directory_iterator(scene_out / "diffuse", ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("restart_", 0) == 0 && name.size() > 4 && name.substr(name.size() - 4) == ".spd" && name != kept)
+      std::filesystem::remove(entry.path(), ec);
+  }
+}
 
 }  // namespace
 
@@ -162,7 +188,17 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
     const int made_last = read_stage_record(cache_dir)->last_frame;
     resume = size_t(std::find(frames.begin(), frames.end(), made_last) - frames.begin());
     if (resume >= frames.size()) resume = 0;
-    if (resume > 0) summary.continued_from = frames[resume];
+  }
+  std::optional<DiffuseFrame> resume_state;
+  std::string resume_note;
+  if (resume > 0) {
+    resume_state = exact_diffuse_state(summary.out_dir, frames[resume]);
+    if (resume_state)
+      summary.continued_from = frames[resume];
+    else
+      resume_note = str("diffuse: simulating from the start (", diffuse_restart_path(summary.out_dir, frames[resume]).string(),
+                        ", the exact state to continue from, is missing)");
+    if (!resume_state) resume = 0;
   }
   summary.why = options.force ? "--force" : match.why;
   remove_stage_record(cache_dir);
@@ -170,6 +206,8 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
   Progress progress("simulate " + scene.name, frames.size() - resume, options.quiet);
   if (resume > 0)
     progress.message(str("diffuse: continuing from frame ", frames[resume], " (", match.why, ")"));
+  else if (!resume_note.empty())
+    progress.message(resume_note);
   else if (!options.quiet && match.kind == RecordMatch::Kind::Stale && !options.force)
     progress.message(str("diffuse: simulating (", match.why, ")"));
   FluidFrame current =
@@ -184,7 +222,7 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
   setup.particles = scene.flip_particles ? FluidParticles::Flip : FluidParticles::Sph;
   setup.fill_narrow_band = scene.fill_narrow_band;
   DiffuseSimulator simulator(setup);
-  if (resume > 0) simulator.set_particles(read_diffuse_cache(diffuse_cache_path(summary.out_dir, frames[resume])));
+  if (resume > 0) simulator.set_particles(std::move(*resume_state));
 
   write_file_atomically(summary.out_dir / "diffuse_params.json",
                         [&](std::ostream& out) { out << diffuse_params_to_json(scene.diffuse).dump(2) << '\n'; });
@@ -210,7 +248,9 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
     auto write_frame = [&](const DiffuseFrame& particles, const FrameStats& stats) {
       if (k == resume && resume > 0) return;  // the frame continued from is on disk already
       const Stopwatch t0;
-      write_diffuse_cache(diffuse_cache_path(summary.out_dir, particles.index), particles);
+      write_diffuse_cache(diffuse_cache_path(summary.out_dir, particles.index), particles,
+                          scene.fluid.particle_radius / kPositionStepsPerRadius);
+      if (k + 1 == frames.size()) write_diffuse_cache(diffuse_restart_path(summary.out_dir, particles.index), particles);
       if (scene.write_bgeo)
         write_bgeo(diffuse_bgeo_path(summary.out_dir, particles.index), particles);
       io_ms = t0.milliseconds();
@@ -294,6 +334,7 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
     progress.message(str("  (", unpaired_frames, " of ", frames.size() - 1 - resume,
                          " frame intervals left their particles unpaired)"));
   write_file_atomically(summary.out_dir / "stats.csv", [&](std::ostream& out) { out << stats_text; });
+  remove_diffuse_restarts(summary.out_dir, frames.back());
   write_stage_record(cache_dir, wanted);
   summary.seconds = start.seconds();
   progress.finish(str("max ", summary.max_diffuse, " diffuse particles -> ", summary.out_dir.string()));

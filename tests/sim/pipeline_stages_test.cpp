@@ -112,6 +112,19 @@ TEST_F(PipelineStages, CurrentCachesAreReusedAndChangesRunTheStagesAgain) {
   EXPECT_EQ(again.diffuse.continued_from, 3);
   EXPECT_EQ(again.diffuse.frames, 2);  // frame 3 again (not written), then frame 4
   EXPECT_TRUE(fs::is_regular_file(out / "tiny/diffuse/diffuse_0004.spd"));
+  // The caches are quantized; the last frame's exact state is kept beside them to continue from, and
+  // the one continued from is gone.
+  EXPECT_TRUE(peek_diffuse_cache(out / "tiny/diffuse/diffuse_0004.spd").quantized);
+  EXPECT_FALSE(peek_diffuse_cache(out / "tiny/diffuse/restart_0004.spd").quantized);
+  EXPECT_FALSE(fs::exists(out / "tiny/diffuse/restart_0003.spd"));
+
+  // Without that exact state the diffuse stage does not continue from the rounded cache: it starts over.
+  fs::remove(out / "tiny/diffuse/restart_0004.spd");
+  json["fluid"]["frames"] = {0, 5};
+  again = simulate_scene(scene_of(json), options);
+  EXPECT_EQ(again.diffuse.continued_from, -1);
+  EXPECT_EQ(again.diffuse.frames, 6);
+  EXPECT_TRUE(fs::is_regular_file(out / "tiny/diffuse/restart_0005.spd"));
 }
 
 // What farms ask before submitting a simulation job: would simulate_scene run anything?
