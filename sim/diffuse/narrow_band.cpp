@@ -96,7 +96,7 @@ InteriorFill InteriorFiller::fill(FluidStepState& state, float cell, float spaci
       else if (top) kind_[c] = Air;
       else if (padding) kind_[c] = Blocked;
       else if (see_solids) {
-        const Vec3f index_centre(float(xyz[0]) + 0.5f, float(xyz[1]) + 0.5f, float(xyz[2]) + 0.5f);
+        const Vec3f index_centre = Vec3f(float(xyz[0]), float(xyz[1]), float(xyz[2])) + Vec3f::Constant(0.5f);
         const Vec3f centre = origin + index_centre * cell;
         if (solids->inside(centre)) kind_[c] = Blocked;
       }
