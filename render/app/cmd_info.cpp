@@ -9,6 +9,9 @@
 
 #include "render/app/commands.h"
 #include "sim/core/error.h"
+#include "sim/diffuse/narrow_band.h"
+#include "sim/io/fluid_import.h"
+#include "sim/io/fluid_survey.h"
 #include "sim/io/particle_file.h"
 
 namespace spume {
@@ -60,12 +63,45 @@ std::pair<std::string, long> sequence_of(const std::string& name) {
        "number):", listing);
 }
 
+// Whether a fluid frame is a narrow band (MODEL.md §9.1), tested as a run would: cells of h = 4r with r
+// from the frame's own spacing, flood-filled from above (spume's -y gravity, after the up axis "auto"
+// decides). "" for files that are not fluid frames.
+std::string interior_line(const fs::path& path) {
+  const ParticleFormat format = particle_format(path);
+  if (format == ParticleFormat::DiffuseCache) return "";
+  FluidFrame frame;
+  try {
+    frame = read_fluid_file(path, resolve_fluid_import(path, "auto", "", std::nullopt, 0.0).read);
+  } catch (const Error&) {
+    return "";  // spume's diffuse BGEO, or a file describe_particle_file already explained
+  }
+  if (frame.size() < 2) return "";
+  const float spacing = median_spacing(frame.positions);
+  if (!(spacing > 0.0f)) return "";
+  FluidStepState state;
+  state.positions = std::move(frame.positions);
+  state.velocities.assign(state.positions.size(), Vec3f::Zero());
+  state.motion = state.velocities;
+  state.masses.assign(state.positions.size(), 1.0f);
+  state.ids.assign(state.positions.size(), 0);
+  InteriorFiller filler;
+  const InteriorFill fill = filler.fill(state, 2.0f * spacing, spacing, Vec3f(0.0f, -1.0f, 0.0f), nullptr);
+  if (fill.skipped) return "  interior: not tested (the particles spread over more than 16M cells of h)\n";
+  if (!fill.narrow_band)
+    return str("  interior: full (", fill.enclosed_cells, " enclosed empty cells of h = 2 x the ", spacing,
+               " m spacing beside ", fill.occupied_cells, " occupied)\n");
+  return str("  interior: a NARROW BAND: the particles (", spacing, " m apart) enclose ", fill.enclosed_cells,
+             " empty cells of h beside ", fill.occupied_cells, " occupied, as a FLIP cache that keeps particles only "
+             "near the surface; a run fills it for the classification and advection (fluid.narrow_band \"auto\", "
+             "MODEL.md §9.1)\n");
+}
+
 int info(const cli::ParsedArgs& args) {
   if (args.positional.empty()) cli::usage_fail("no FILE given");
   for (const auto& path : args.positional) {
     std::error_code ec;
     if (fs::is_directory(path, ec)) fail_on_directory(path);
-    std::printf("%s\n", describe_particle_file(path).c_str());
+    std::printf("%s%s\n", describe_particle_file(path).c_str(), interior_line(path).c_str());
   }
   return 0;
 }

@@ -32,6 +32,7 @@ FluidImport resolve_fluid_import(const std::filesystem::path& first_file, const 
   in.read.vdb_grid = vdb_grid;
   const std::optional<std::filesystem::path> config = mantaflow_config_path(first_file);
   const std::optional<double> voxel = config ? std::nullopt : mantaflow_voxel_size(first_file);
+  in.mantaflow = config || voxel;
   if (up_choice == "z") {
     in.read.up = UpAxis::Z;
     in.notes.push_back("up axis: z (fluid.up_axis = \"z\"): the cache's (x, y, z) is read as spume's (x, z, -y)");

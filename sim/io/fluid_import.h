@@ -17,6 +17,7 @@ struct FluidImport {
   FluidReadOptions read;
   float velocity_scale = 1.0f;
   bool velocity_scale_derived = false;  // from a Mantaflow config, not from the key
+  bool mantaflow = false;               // a Blender Mantaflow cache: FLIP particles (fluid.particles "auto")
   std::vector<std::string> notes;
 };
 

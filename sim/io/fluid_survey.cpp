@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <sstream>
 
@@ -20,7 +21,7 @@ namespace {
 
 using Json = nlohmann::json;
 
-constexpr int kSurveyVersion = 4;  // bump when what a frame's entry holds changes
+constexpr int kSurveyVersion = 5;  // bump when what a frame's entry holds changes
 
 // An entry's digest covers its file identity and what was measured in it: an entry edited by hand
 // (or by a tool that kept the file's identity) no longer matches and its frame is surveyed again.
@@ -41,7 +42,13 @@ Json to_json(const FrameSurvey& f) {
     j["max"] = {f.bounds.max.x(), f.bounds.max.y(), f.bounds.max.z()};
     j["sheet"] = f.sheet;
     j["centroid"] = {f.centroid.x(), f.centroid.y(), f.centroid.z()};
-    if (f.has_mean_velocity()) j["mean_velocity"] = {f.mean_velocity.x(), f.mean_velocity.y(), f.mean_velocity.z()};
+    if (f.has_mean_velocity()) {
+      j["mean_velocity"] = {f.mean_velocity.x(), f.mean_velocity.y(), f.mean_velocity.z()};
+      j["column"] = f.column;
+      Json fronts = Json::array();
+      for (const FrameSurvey::ColumnFront& c : f.fronts) fronts.push_back({c.side, c.i, c.j, c.sheet, c.velocity});
+      j["fronts"] = fronts;
+    }
   }
   j["digest"] = entry_digest(j);
   return j;
@@ -61,8 +68,13 @@ FrameSurvey frame_from_json(const Json& j) {
     for (int a = 0; a < 3; ++a) f.bounds.max[a] = j.at("max").at(size_t(a)).get<float>();
     f.sheet = j.at("sheet").get<std::array<float, 6>>();
     for (int a = 0; a < 3; ++a) f.centroid[a] = j.at("centroid").at(size_t(a)).get<float>();
-    if (j.contains("mean_velocity"))
+    if (j.contains("mean_velocity")) {
       for (int a = 0; a < 3; ++a) f.mean_velocity[a] = j.at("mean_velocity").at(size_t(a)).get<float>();
+      f.column = j.at("column").get<float>();
+      for (const Json& c : j.at("fronts"))
+        f.fronts.push_back({c.at(0).get<int>(), c.at(1).get<int>(), c.at(2).get<int>(), c.at(3).get<float>(),
+                            c.at(4).get<float>()});
+    }
   } else {
     f.sheet.fill(NAN);
     f.centroid = Vec3f::Constant(NAN);
@@ -131,6 +143,52 @@ Aabb FluidSurvey::bounds() const {
   return box;
 }
 
+namespace {
+
+// The columns' extremes of one frame (FrameSurvey::fronts), on columns of side `column`.
+std::vector<FrameSurvey::ColumnFront> column_fronts(const std::vector<Vec3f>& positions,
+                                                   const std::vector<Vec3f>& velocities, const Aabb& bounds,
+                                                   float column) {
+  constexpr size_t kSheetRank = 4, kVelocityRank = 8;
+  struct Outer {
+    float key = INFINITY;  // more outward is smaller: the high sides negated
+    uint32_t index = UINT32_MAX;
+  };
+  std::vector<FrameSurvey::ColumnFront> fronts;
+  for (int side = 0; side < 6; ++side) {
+    const int axis = side / 2, u = axis == 0 ? 1 : 0, w = axis == 2 ? 1 : 2;
+    const int u0 = int(std::floor(bounds.min[u] / column)), w0 = int(std::floor(bounds.min[w] / column));
+    const int nu = int(std::floor(bounds.max[u] / column)) - u0 + 1, nw = int(std::floor(bounds.max[w] / column)) - w0 + 1;
+    std::vector<std::array<Outer, kVelocityRank>> outer(size_t(nu) * size_t(nw));
+    std::vector<uint32_t> held(outer.size(), 0);
+    for (size_t i = 0; i < positions.size(); ++i) {
+      const Vec3f& p = positions[i];
+      const int cu = std::clamp(int(std::floor(p[u] / column)) - u0, 0, nu - 1);
+      const int cw = std::clamp(int(std::floor(p[w] / column)) - w0, 0, nw - 1);
+      const size_t c = size_t(cu) * size_t(nw) + size_t(cw);
+      ++held[c];
+      const float key = side % 2 == 0 ? p[axis] : -p[axis];
+      auto& o = outer[c];
+      if (!(key < o[kVelocityRank - 1].key)) continue;
+      size_t k = kVelocityRank - 1;
+      while (k > 0 && key < o[k - 1].key) o[k] = o[k - 1], --k;
+      o[k] = Outer{key, uint32_t(i)};
+    }
+    for (size_t c = 0; c < outer.size(); ++c) {
+      if (held[c] < kSheetRank) continue;
+      const size_t n = std::min<size_t>(held[c], kVelocityRank);
+      double along = 0.0;
+      for (size_t k = 0; k < n; ++k) along += double(velocities[outer[c][k].index][axis]);
+      const float key = outer[c][kSheetRank - 1].key;
+      fronts.push_back({side, int(c / size_t(nw)) + u0, int(c % size_t(nw)) + w0, side % 2 == 0 ? key : -key,
+                        float(along / double(n))});
+    }
+  }
+  return fronts;
+}
+
+}  // namespace
+
 FrameSurvey survey_positions(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& velocities) {
   FrameSurvey f;
   f.particles = positions.size();
@@ -163,6 +221,11 @@ FrameSurvey survey_positions(const std::vector<Vec3f>& positions, const std::vec
     for (const Vec3f& u : velocities)
       for (int a = 0; a < 3; ++a) v[a] += double(u[a]);
     for (int a = 0; a < 3; ++a) f.mean_velocity[a] = float(v[a] / double(velocities.size()));
+    const float extent = (f.bounds.max - f.bounds.min).maxCoeff();
+    if (extent > 0.0f && std::isfinite(extent)) {
+      f.column = std::exp2(std::ceil(std::log2(extent / 8.0f)));
+      f.fronts = column_fronts(positions, velocities, f.bounds, f.column);
+    }
   }
   return f;
 }

@@ -32,6 +32,19 @@ struct FrameSurvey {
   // The particles' mean stored velocity, as the file holds it (NaN without velocities): over a frame
   // interval it should match the centroid's motion (check_stored_velocities).
   Vec3f mean_velocity = Vec3f::Constant(NAN);
+  // The fluid's extremes in columns (with stored velocities only): the columns are squares of side
+  // `column` (a power of two in metres, about an eighth of the frame's largest extent, aligned to
+  // multiples of it, so consecutive frames of a similar size share them) across each side's axis. Per
+  // side and column holding 4 particles or more: the 4th outermost coordinate, and the mean stored
+  // velocity along that axis of the 8 outermost. Where such an extreme is a free surface it moves with
+  // the fluid there, whatever particles are added or removed elsewhere (check_stored_velocities).
+  struct ColumnFront {
+    int side = 0;  // 0..5: -x, +x, -y, +y, -z, +z
+    int i = 0, j = 0;  // the column's index along the side's other two axes (in x, y, z order)
+    float sheet = 0.0f, velocity = 0.0f;
+  };
+  float column = 0.0f;
+  std::vector<ColumnFront> fronts;
   bool has_mean_velocity() const { return std::isfinite(mean_velocity.x()); }
   bool has_sheet() const { return particles >= 4; }  // a sheet of 4 particles, not strays
 };

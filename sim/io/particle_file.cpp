@@ -173,6 +173,9 @@ void describe_vdb(std::ostringstream& out, const std::filesystem::path& path) {
   const FluidImport import = resolve_fluid_import(path, "auto", "", std::nullopt, 0.0);
   if (import.read.up == UpAxis::Y) out << "  up axis: y (no Mantaflow config beside the file; fluid.up_axis = \"z\" turns a Z-up cache)\n";
   for (const std::string& note : import.notes) out << "  " << note << "\n";
+  if (import.mantaflow)
+    out << "  particles: flip (fluid.particles \"auto\" for a Mantaflow cache: velocities averaged over 2 h for the "
+           "potentials, counts against the frame's own particle density; MODEL.md §9.2)\n";
   to_y_up(frame, import.read.up);
   if (import.velocity_scale != 1.0f)
     for (Vec3f& v : frame.velocities) v *= import.velocity_scale;

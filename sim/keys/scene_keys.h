@@ -60,9 +60,10 @@ inline constexpr KeySpec up_axis{
 inline constexpr KeySpec vdb_grid{.path = "fluid.vdb_grid", .type = Text, .default_text = "every point data grid",
                                   .doc = "files: the point data grid of a .vdb cache to read, by name"};
 inline constexpr KeySpec particles{
-    .path = "fluid.particles", .type = Choice, .choices = "sph|flip",
+    .path = "fluid.particles", .type = Choice, .choices = "auto|sph|flip",
     .doc = "what the cached particles are: sph (the paper's model as is) or flip (velocities averaged over 2 h "
-           "for the potentials, counts measured against the frame's own particle density; MODEL.md §9)"};
+           "for the potentials, counts measured against the frame's own particle density; MODEL.md §9); auto is "
+           "flip for a Blender Mantaflow cache, else sph"};
 inline constexpr KeySpec narrow_band{
     .path = "fluid.narrow_band", .type = Choice, .choices = "auto|off",
     .doc = "auto: a frame whose particles enclose a large empty interior (a FLIP cache that keeps only a band "

@@ -74,7 +74,7 @@ SceneInputs read_scene_inputs(const SimScene& scene, const std::filesystem::path
     const std::string warning = spacing_warning(scene.fluid.particle_radius, in.survey.spacing);
     if (!warning.empty()) in.notes.push_back(warning);
     const VelocityCheck velocities = check_stored_velocities(in.survey, scene.fluid.fps, scene.fluid.particle_radius,
-                                                             scene.velocity_scale);
+                                                             scene.velocity_scale, scene.gravity);
     if (!velocities.note.empty()) in.notes.push_back(velocities.note);
   }
   in.solids = scene.solids;

@@ -42,7 +42,8 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
                                         scene.fluid.particle_radius, "; the usual choice is 4 x radius"));
   scene.fluid.fps = fluid.number(k::fluid::fps);
   scene.fluid.rest_density = float(fluid.number(k::fluid::rest_density));
-  scene.flip_particles = fluid.choice(k::fluid::particles) == "flip";
+  const std::string particles = fluid.choice(k::fluid::particles);
+  scene.flip_particles = particles == "flip";
   scene.fill_narrow_band = fluid.choice(k::fluid::narrow_band) == "auto";
   if (scene.source == FluidSourceKind::Files) {
     const auto files = fluid.optional_text(k::fluid::files.name());
@@ -64,6 +65,13 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
     scene.read = import.read;
     scene.velocity_scale = import.velocity_scale;
     scene.import_notes = import.notes;
+    if (particles == "auto" && import.mantaflow) {
+      scene.flip_particles = true;
+      scene.import_notes.push_back("particles: flip (fluid.particles \"auto\": Mantaflow's particles are FLIP "
+                                   "particles, so the potentials use velocities averaged over 2 h and the counts the "
+                                   "frame's own particle density, MODEL.md §9.2); fluid.particles = \"sph\" takes them "
+                                   "as SPH particles");
+    }
   }
   if (scene.source == FluidSourceKind::Solver) scene.solver = read_fluid_solver(fluid, scene.gravity);
   // Files: every file found unless limited; the solver: the declared range unless given.
@@ -95,7 +103,10 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
 
   // The values the run uses (defaults included), so a key written at its default is no change.
   Json fluid_keys = root.effective("fluid");
-  if (fluid_keys.is_object()) fluid_keys.erase("frames");
+  if (fluid_keys.is_object()) {
+    fluid_keys.erase("frames");
+    fluid_keys["particles"] = scene.flip_particles ? "flip" : "sph";  // what "auto" decided, not the word
+  }
   Json keys = {{"gravity", root.effective("gravity")}, {"fluid", fluid_keys}, {"solids", root.effective("solids")}};
   // What "auto" and a Mantaflow config decided shapes the frames as much as the keys do.
   if (scene.read.up != UpAxis::Y || scene.velocity_scale != float(fluid.number(k::fluid::velocity_scale)))

@@ -1,6 +1,8 @@
 #include "sim/scene/velocity_check.h"
 
 #include <algorithm>
+#include <array>
+#include <map>
 #include <cmath>
 #include <vector>
 
@@ -15,11 +17,52 @@ constexpr double kMaxCountChange = 0.001;
 constexpr float kMinShiftInRadii = 0.1f;    // a centroid at rest measures nothing
 constexpr int kMinIntervals = 3;
 constexpr float kAgreement = 1.5f;          // ratios within [1/1.5, 1.5] agree
+constexpr float kMinFrontShiftInRadii = 2.0f;  // an extreme must move a particle spacing to be measured
+constexpr int kMinFrontPairs = 5;
+// The top measures the fluid's velocity only where it is a free surface carried by the fluid; where
+// fluid arrives from the side (a jet entering a column) it rises while the particles fall. Trusted when
+// at least this share of the columns moved the way their stored velocities point.
+constexpr double kMinConsistentShare = 2.0 / 3.0;
+
+// Ratios of stored to moved at the fluid's extremes, one per interval, side and column that moved.
+std::vector<float> extreme_ratios(const FluidSurvey& survey, double fps, float particle_radius, float velocity_scale,
+                                  const Vec3f& gravity) {
+  int up_side = -1;  // every side
+  if (gravity.squaredNorm() > 0.0f) {
+    int axis = 0;
+    gravity.cwiseAbs().maxCoeff(&axis);
+    up_side = 2 * axis + (gravity[axis] < 0.0f ? 1 : 0);
+  }
+  std::vector<float> ratios;
+  for (size_t k = 0; k + 1 < survey.frames.size(); ++k) {
+    const FrameSurvey& a = survey.frames[k];
+    const FrameSurvey& b = survey.frames[k + 1];
+    if (a.column <= 0.0f || a.column != b.column) continue;  // columns of another size are other columns
+    std::map<std::array<int, 3>, const FrameSurvey::ColumnFront*> before;
+    for (const FrameSurvey::ColumnFront& c : a.fronts) before[{c.side, c.i, c.j}] = &c;
+    for (const FrameSurvey::ColumnFront& c : b.fronts) {
+      if (up_side >= 0 && c.side != up_side) continue;
+      const auto it = before.find({c.side, c.i, c.j});
+      if (it == before.end()) continue;
+      const float shift = c.sheet - it->second->sheet;
+      if (!(std::fabs(shift) >= kMinFrontShiftInRadii * particle_radius)) continue;
+      const float stored = 0.5f * velocity_scale * (it->second->velocity + c.velocity);
+      const float moved = shift * float(fps / double(b.frame - a.frame));
+      if (std::isfinite(stored)) ratios.push_back(stored / moved);
+    }
+  }
+  return ratios;
+}
+
+float median(std::vector<float> values) {
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
 
 }  // namespace
 
 VelocityCheck check_stored_velocities(const FluidSurvey& survey, double fps, float particle_radius,
-                                      float velocity_scale) {
+                                      float velocity_scale, const Vec3f& gravity) {
   VelocityCheck check;
   std::vector<float> ratios;
   bool any_velocities = false;
@@ -39,25 +82,47 @@ VelocityCheck check_stored_velocities(const FluidSurvey& survey, double fps, flo
   check.intervals = int(ratios.size());
   if (!any_velocities) return check;
   if (check.intervals < kMinIntervals) {
-    check.note = str("stored velocities not checked against the motion: ", check.intervals,
-                     " frame intervals where the fluid's centroid moves while its particle count holds (within 0.1%; ",
-                     kMinIntervals, " needed)");
-    return check;
+    const std::vector<float> fronts = extreme_ratios(survey, fps, particle_radius, velocity_scale, gravity);
+    if (int(fronts.size()) < kMinFrontPairs) {
+      check.note = str("stored velocities not checked against the motion: ", check.intervals,
+                       " frame intervals where the fluid's centroid moves while its particle count holds (within 0.1%; ",
+                       kMinIntervals, " needed), and ", fronts.size(), " where the fluid's top moves at least ",
+                       kMinFrontShiftInRadii, " r (", kMinFrontPairs, " needed)");
+      return check;
+    }
+    const double consistent =
+        double(std::count_if(fronts.begin(), fronts.end(), [](float q) { return q > 0.0f; })) / double(fronts.size());
+    if (consistent < kMinConsistentShare) {
+      check.note = str("stored velocities not checked against the motion: the particle count changes, so the "
+                       "centroid cannot be used, and the fluid's top (", fronts.size(), " columns and frame intervals "
+                       "that moved at least 2 r) moved the way its stored velocities point in only ",
+                       100.0 * consistent, "% of them (", 100.0 * kMinConsistentShare, "% needed): there it is fluid "
+                       "arriving or leaving, not a free surface carried by the fluid");
+      return check;
+    }
+    check.by_extremes = true;
+    check.intervals = int(fronts.size());
+    check.ratio = median(fronts);
+  } else {
+    check.ratio = median(ratios);
   }
-  std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
-  check.ratio = ratios[ratios.size() / 2];
+  const std::string measured =
+      check.by_extremes
+          ? str(" the motion of the fluid's top (in columns, the 8 highest particles' stored vertical velocity "
+                "against the rise of the 4th highest, median over ", check.intervals, " columns and frame intervals "
+                "that moved at least 2 r: a free surface moves with the fluid; the particle count changes, so the "
+                "centroid cannot be used)")
+          : str(" the velocity of the fluid's centroid (median over ", check.intervals, " frame intervals)");
   const std::string scaled = velocity_scale != 1.0f ? str(" (after fluid.velocity_scale = ", velocity_scale, ")") : "";
   if (check.ratio >= 1.0f / kAgreement && check.ratio <= kAgreement) {
-    check.note = str("stored velocities", scaled, " agree with the motion: ", check.ratio,
-                     " times the velocity of the fluid's centroid (median over ", check.intervals, " frame intervals)");
+    check.note = str("stored velocities", scaled, " agree with the motion: ", check.ratio, " times", measured);
     return check;
   }
-  check.note = str("warning: the stored velocities", scaled, " are ", check.ratio,
-                   " times the motion of the fluid (the mean stored velocity against the centroid's displacement "
-                   "times fluid.fps = ", fps, ", median over ", check.intervals, " frame intervals): every kinetic "
-                   "score (E_k, Eqs. 2 and 7) would be off by that factor. If the cache stores velocities in other "
-                   "units, set fluid.velocity_scale = ", velocity_scale / check.ratio, "; if its frame rate is not ",
-                   fps, " per second, set fluid.fps (--fps) to ", fps * check.ratio);
+  check.note = str("warning: the stored velocities", scaled, " are ", check.ratio, " times", measured,
+                   ", at fluid.fps = ", fps, ": every kinetic score (E_k, Eqs. 2 and 7) would be off by that factor. "
+                   "If the cache stores velocities in other units, set fluid.velocity_scale = ",
+                   velocity_scale / check.ratio, "; if its frame rate is not ", fps, " per second, set fluid.fps (--fps) "
+                   "to ", fps * check.ratio);
   return check;
 }
 

@@ -30,6 +30,9 @@ TEST(MantaflowCache, InfoShowsGridsAttributesAndWhatIsRead) {
   EXPECT_TRUE(contains(r.output, "up axis: z")) << r.output;
   // Resolution 48 over the domain's 1.5 m: 0.03125 m cells; 24 fps at time scale 1: x 0.03125 x 2.5.
   EXPECT_TRUE(contains(r.output, "velocities: x 0.078125 to m/s")) << r.output;
+  // Mantaflow's particles are FLIP particles, kept in a band under the surface (3 cells by default).
+  EXPECT_TRUE(contains(r.output, "particles: flip (fluid.particles \"auto\"")) << r.output;
+  EXPECT_TRUE(contains(r.output, "interior: a NARROW BAND")) << r.output;
 }
 
 // The shared jet's frame 30: 35,524 points, as counted by a separate program with OpenVDB's pointCount.
@@ -53,6 +56,27 @@ TEST(MantaflowCache, SimulateRunsOverTwoRealFramesAndSaysWhatItConverted) {
   EXPECT_TRUE(fs::exists(dir / "out/fluid_data/diffuse/diffuse_0002.spd")) << r.output;
   EXPECT_TRUE(contains(r.output, "up axis: z (fluid.up_axis \"auto\"")) << r.output;
   EXPECT_TRUE(contains(r.output, "velocities: x 0.078125 to m/s")) << r.output;
+  EXPECT_TRUE(contains(r.output, "particles: flip (fluid.particles \"auto\"")) << r.output;
+  EXPECT_TRUE(contains(r.output, "fluid.particles = flip: velocities averaged")) << r.output;
+  EXPECT_TRUE(contains(r.output, "a narrow-band cache")) << r.output;
+  // Asked to take them as SPH particles, it does, and the run's caches are made again.
+  const CommandResult sph = run_spume("simulate --fluid 'data/fluid_data_%04d.vdb' --radius 0.0078 --fps 24 --out out "
+                                      "--set fluid.particles=sph",
+                                      testing::SpumeOptions::after("cd " + dir.path.string()));
+  EXPECT_EQ(sph.status, 0) << sph.output;
+  EXPECT_FALSE(contains(sph.output, "particles: flip")) << sph.output;
+  EXPECT_FALSE(contains(sph.output, "fluid.particles = flip")) << sph.output;
+  EXPECT_TRUE(contains(sph.output, "fluid.particles: \"flip\" -> \"sph\"")) << sph.output;
+}
+
+// A full SPH cache is neither FLIP nor a narrow band.
+TEST(MantaflowCache, InfoOnAnSphCacheSaysItsInteriorIsFull) {
+  const fs::path frame = kJet / "../splishsplash_dambreak_objects/frames/ParticleData_Fluid_30.bgeo";
+  if (!fs::exists(frame)) GTEST_SKIP() << frame << " not present";
+  const CommandResult r = run_spume("info " + frame.string());
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(contains(r.output, "interior: full")) << r.output;
+  EXPECT_FALSE(contains(r.output, "particles: flip")) << r.output;
 }
 
 }  // namespace

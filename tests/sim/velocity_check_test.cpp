@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "sim/scene/velocity_check.h"
 
@@ -74,6 +75,89 @@ TEST(VelocityCheck, AFluidAtRestOrOneThatChangesItsCountMeasuresNothing) {
   FluidSurvey bare = falling_block(1.0f);
   for (FrameSurvey& f : bare.frames) f.mean_velocity = Vec3f::Constant(NAN);
   EXPECT_EQ(check_stored_velocities(bare, kFps, kRadius, 1.0f).note, "");
+}
+
+// Frames 0..10 of a 0.3 m block falling from rest whose particles are not the same from frame to frame,
+// as a FLIP cache reseeds: a lattice of 16^3 particles 2 r apart, plus 500 x 1.3^k particles at random
+// places inside it (seeded by the frame, at least 2 r from its faces), so the count never holds and
+// the centroid wanders by where they happen to be. Every particle stores the block's velocity -g t (plus
+// `drift`) times `units`; the block moves as a whole, so each extreme (a lattice face) moves exactly as
+// the block does, and stored / moved at an extreme is `units` by hand.
+FluidSurvey reseeded_falling_block(float units, const Vec3f& drift = Vec3f::Zero()) {
+  FluidSurvey survey;
+  double n = 500.0;
+  for (int k = 0; k <= 10; ++k) {
+    const float t = float(k / kFps);
+    const Vec3f offset = Vec3f(0.0f, 1.0f - 0.5f * kG * t * t, 0.0f) + drift * t;
+    const Vec3f velocity = (Vec3f(0.0f, -kG * t, 0.0f) + drift) * units;
+    std::vector<Vec3f> positions;
+    for (int x = 0; x < 16; ++x)
+      for (int y = 0; y < 16; ++y)
+        for (int z = 0; z < 16; ++z) positions.push_back(Vec3f(float(x), float(y), float(z)) * 2.0f * kRadius + offset);
+    std::mt19937 rng(uint32_t(k + 1));
+    std::uniform_real_distribution<float> inside(2.0f * kRadius, 0.3f - 2.0f * kRadius);
+    for (size_t i = 0; i < size_t(n); ++i) positions.push_back(Vec3f(inside(rng), inside(rng), inside(rng)) + offset);
+    FrameSurvey f = survey_positions(positions, std::vector<Vec3f>(positions.size(), velocity));
+    f.frame = k;
+    survey.frames.push_back(f);
+    n *= 1.3;
+  }
+  return survey;
+}
+
+TEST(VelocityCheck, AReseededCacheIsMeasuredAtItsTop) {
+  // Centroid intervals: none (the count grows 30% a frame). The top (+y, against gravity) falls with the
+  // block; from frame 1 on each moves g dt^2 (k + 1/2) >= 23 mm > 2 r, and 0 to 1 moves 7.8 mm (< 2 r = 20 mm).
+  // The block spans 0.3 m: columns of 1/16 m (0.3 / 8 rounded up to a power of two), 5 x 5 of them
+  // from x, z = 0 to 0.3125, each holding 3 x 3 or more of a face's lattice points.
+  const VelocityCheck c = check_stored_velocities(reseeded_falling_block(12.7f), kFps, kRadius, 1.0f);
+  EXPECT_TRUE(c.by_extremes);
+  EXPECT_EQ(c.intervals, 9 * 25);  // the top's columns
+  EXPECT_NEAR(c.ratio, 12.7f, 0.02f);
+  EXPECT_EQ(c.note.rfind("warning: the stored velocities are 12.7", 0), 0u) << c.note;
+  EXPECT_NE(c.note.find("the fluid's top"), std::string::npos) << c.note;
+  EXPECT_NE(c.note.find("fluid.velocity_scale = 0.0787"), std::string::npos) << c.note;
+  const VelocityCheck fixed = check_stored_velocities(reseeded_falling_block(12.7f), kFps, kRadius, 1.0f / 12.7f);
+  EXPECT_NEAR(fixed.ratio, 1.0f, 1e-3f);
+  EXPECT_EQ(fixed.note.rfind("stored velocities (after fluid.velocity_scale = ", 0), 0u) << fixed.note;
+  // A sideways drift of 1 m/s: the columns' tops still fall with the block.
+  const VelocityCheck drifting =
+      check_stored_velocities(reseeded_falling_block(1.0f, Vec3f(1.0f, 0.0f, 0.0f)), kFps, kRadius, 1.0f);
+  EXPECT_GE(drifting.intervals, 9 * 16);
+  EXPECT_NEAR(drifting.ratio, 1.0f, 1e-3f);
+  EXPECT_EQ(drifting.note.rfind("stored velocities agree with the motion", 0), 0u) << drifting.note;
+}
+
+TEST(VelocityCheck, ATopThatHardlyMovesMeasuresNothing) {
+  // The same block held still (a pool being reseeded): no side moves 2 r.
+  FluidSurvey still = reseeded_falling_block(12.7f);
+  const FluidSurvey first = still;
+  for (FrameSurvey& f : still.frames) {
+    const int frame = f.frame;
+    f = first.frames[0];
+    f.frame = frame;
+    f.particles += uint64_t(frame) * 300;
+  }
+  const VelocityCheck c = check_stored_velocities(still, kFps, kRadius, 1.0f);
+  EXPECT_FALSE(c.by_extremes);
+  EXPECT_TRUE(std::isnan(c.ratio));
+  EXPECT_NE(c.note.find("and 0 where the fluid's top moves"), std::string::npos) << c.note;
+}
+
+TEST(VelocityCheck, ATopThatRisesWhileItsParticlesFallIsNotTrusted) {
+  // Fluid arriving from the side: each column's top rises as the stored velocities point down (the
+  // falling block played backwards in position only). Every ratio is negative: nothing is claimed.
+  FluidSurvey arriving = reseeded_falling_block(1.0f);
+  const FluidSurvey falling = arriving;
+  for (size_t k = 0; k < arriving.frames.size(); ++k) {
+    const FrameSurvey& mirror = falling.frames[falling.frames.size() - 1 - k];
+    for (size_t c = 0; c < arriving.frames[k].fronts.size(); ++c)
+      arriving.frames[k].fronts[c].sheet = mirror.fronts[c].sheet;
+  }
+  const VelocityCheck c = check_stored_velocities(arriving, kFps, kRadius, 1.0f);
+  EXPECT_FALSE(c.by_extremes);
+  EXPECT_TRUE(std::isnan(c.ratio));
+  EXPECT_NE(c.note.find("% of them (66.6667% needed)"), std::string::npos) << c.note;
 }
 
 }  // namespace
