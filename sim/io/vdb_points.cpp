@@ -13,7 +13,9 @@
 #include <openvdb/points/PointCount.h>
 #include <openvdb/points/PointDataGrid.h>
 
+#include "sim/core/allocation_budget.h"
 #include "sim/core/error.h"
+#include "sim/io/library_abort_guard.h"
 
 namespace spume {
 namespace {
@@ -146,6 +148,13 @@ FluidFrame read_vdb_points(const std::filesystem::path& path, const std::string&
   FluidFrame frame;
   std::vector<int64_t> ids;
   int point_grids = 0, used_grids = 0, grids_with_velocity = 0, grids_with_ids = 0;
+  // What a sound file can ask for: its points decompressed (Blosc rarely shrinks points 64-fold) and
+  // a margin; a damaged length field asks for far more (sim/core/allocation_budget.h).
+  std::error_code size_error;
+  const uint64_t file_bytes = std::filesystem::file_size(path, size_error);
+  AllocationBudget budget((size_t(256) << 20) + size_t(64 * (size_error ? 0 : file_bytes)));
+  const LibraryAbortGuard abort_guard(str(where, ": OpenVDB stopped on one of its own checks while reading this "
+                                          "file: it is damaged (or not written by OpenVDB)"));
   try {
     vdb::io::File file(where);
     file.open(/*delayLoad=*/false);
@@ -190,6 +199,12 @@ FluidFrame read_vdb_points(const std::filesystem::path& path, const std::string&
     file.close();
   } catch (const Error&) {
     throw;
+  } catch (const std::bad_alloc&) {
+    if (budget.exceeded())
+      fail(where, ": cannot read this OpenVDB file: reading it asked for more than ", budget.bytes() >> 20,
+            " MiB (256 MiB + 64 x its ", file_bytes, " bytes), which a sound file never needs: a length inside it is "
+           "damaged");
+    fail(where, ": out of memory reading this OpenVDB file");
   } catch (const std::exception& e) {
     fail(where, ": cannot read this OpenVDB file (cut short or damaged?): ", e.what());
   }

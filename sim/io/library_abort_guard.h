@@ -1,0 +1,24 @@
+#pragma once
+// Debian's OpenVDB keeps its assertions: a damaged file can make it call abort() (a compressed page
+// whose header says it holds 0 bytes, found by mutating a real Mantaflow frame), which would end spume
+// with a core dump and no word about the file. While a LibraryAbortGuard lives on a thread, an abort
+// raised on that thread prints "spume: error: FILE: WHAT" and exits 1 instead (no output is ever half
+// written: outputs are renamed into place). Aborts elsewhere keep their default action.
+#include <string>
+
+namespace spume {
+
+class LibraryAbortGuard {
+ public:
+  // `message`: what to say, e.g. "f.vdb: OpenVDB stopped on a check while reading this file (damaged?)".
+  explicit LibraryAbortGuard(const std::string& message);
+  ~LibraryAbortGuard();
+  LibraryAbortGuard(const LibraryAbortGuard&) = delete;
+  LibraryAbortGuard& operator=(const LibraryAbortGuard&) = delete;
+
+ private:
+  const char* outer_;
+  std::string message_;
+};
+
+}  // namespace spume
