@@ -48,6 +48,11 @@ Json to_json(const FrameSurvey& f) {
       Json fronts = Json::array();
       for (const FrameSurvey::ColumnFront& c : f.fronts) fronts.push_back({c.side, c.i, c.j, c.sheet, c.velocity});
       j["fronts"] = fronts;
+      Json tracked = Json::array();
+      for (const FrameSurvey::Tracked& t : f.tracked)
+        tracked.push_back({t.id, t.position.x(), t.position.y(), t.position.z(), t.velocity.x(), t.velocity.y(),
+                           t.velocity.z()});
+      j["tracked"] = tracked;
     }
   }
   j["digest"] = entry_digest(j);
@@ -74,6 +79,10 @@ FrameSurvey frame_from_json(const Json& j) {
       for (const Json& c : j.at("fronts"))
         f.fronts.push_back({c.at(0).get<int>(), c.at(1).get<int>(), c.at(2).get<int>(), c.at(3).get<float>(),
                             c.at(4).get<float>()});
+      for (const Json& t : j.at("tracked"))
+        f.tracked.push_back({t.at(0).get<uint32_t>(),
+                             Vec3f(t.at(1).get<float>(), t.at(2).get<float>(), t.at(3).get<float>()),
+                             Vec3f(t.at(4).get<float>(), t.at(5).get<float>(), t.at(6).get<float>())});
     }
   } else {
     f.sheet.fill(NAN);
@@ -187,9 +196,35 @@ std::vector<FrameSurvey::ColumnFront> column_fronts(const std::vector<Vec3f>& po
   return fronts;
 }
 
+// The particles tracked from frame to frame (FrameSurvey::tracked): the lowest ids under a fixed mixing
+// hash, so the choice depends on the ids only, not on their order or on which other ids are present.
+std::vector<FrameSurvey::Tracked> tracked_particles(const std::vector<Vec3f>& positions,
+                                                    const std::vector<Vec3f>& velocities,
+                                                    const std::vector<uint32_t>& ids) {
+  constexpr size_t kTracked = 64;
+  auto mix = [](uint32_t id) {
+    uint64_t z = uint64_t(id) + 0x9e3779b97f4a7c15ull;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+  };
+  std::vector<std::pair<uint64_t, uint32_t>> keys(ids.size());
+  for (size_t i = 0; i < ids.size(); ++i) keys[i] = {mix(ids[i]), uint32_t(i)};
+  const size_t n = std::min(kTracked, keys.size());
+  std::partial_sort(keys.begin(), keys.begin() + std::ptrdiff_t(n), keys.end());
+  std::vector<FrameSurvey::Tracked> tracked(n);
+  for (size_t k = 0; k < n; ++k) {
+    const uint32_t i = keys[k].second;
+    tracked[k] = {ids[i], positions[i], velocities[i]};
+  }
+  std::sort(tracked.begin(), tracked.end(), [](const auto& a, const auto& b) { return a.id < b.id; });
+  return tracked;
+}
+
 }  // namespace
 
-FrameSurvey survey_positions(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& velocities) {
+FrameSurvey survey_positions(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& velocities,
+                             const std::vector<uint32_t>& ids) {
   FrameSurvey f;
   f.particles = positions.size();
   // The 4 outermost coordinates per side, kept sorted outermost first (low sides: smallest).
@@ -226,6 +261,7 @@ FrameSurvey survey_positions(const std::vector<Vec3f>& positions, const std::vec
       f.column = std::exp2(std::ceil(std::log2(extent / 8.0f)));
       f.fronts = column_fronts(positions, velocities, f.bounds, f.column);
     }
+    if (ids.size() == positions.size()) f.tracked = tracked_particles(positions, velocities, ids);
   }
   return f;
 }
@@ -301,7 +337,7 @@ FluidSurvey survey_fluid_files(const std::string& pattern, const std::vector<int
       try {
         const FluidFrame frame = read_fluid_file(path, read);
         const FileIdentity id = f.file;
-        f = survey_positions(frame.positions, frame.velocities);
+        f = survey_positions(frame.positions, frame.velocities, frame.ids);
         f.frame = frames[todo[t]];
         f.file = id;
       } catch (const Error& error) {

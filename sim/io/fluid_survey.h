@@ -45,6 +45,14 @@ struct FrameSurvey {
   };
   float column = 0.0f;
   std::vector<ColumnFront> fronts;
+  // With ids and stored velocities: the particles whose ids hash lowest (up to 64), the same ones in
+  // every frame they are in, so consecutive frames compare each one's motion with its stored velocity
+  // whatever the count does.
+  struct Tracked {
+    uint32_t id = 0;
+    Vec3f position = Vec3f::Zero(), velocity = Vec3f::Zero();
+  };
+  std::vector<Tracked> tracked;
   bool has_mean_velocity() const { return std::isfinite(mean_velocity.x()); }
   bool has_sheet() const { return particles >= 4; }  // a sheet of 4 particles, not strays
 };
@@ -69,7 +77,8 @@ FluidSurvey survey_fluid_files(const std::string& pattern, const std::vector<int
 
 // One frame's entry from particle positions and stored velocities, if any (exposed for tests); no
 // particles: empty bounds, NaN sheets.
-FrameSurvey survey_positions(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& velocities = {});
+FrameSurvey survey_positions(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& velocities = {},
+                             const std::vector<uint32_t>& ids = {});
 // Median nearest-neighbour distance over up to `samples` evenly strided particles.
 float median_spacing(const std::vector<Vec3f>& positions, size_t samples = 512);
 

@@ -19,6 +19,7 @@ constexpr int kMinIntervals = 3;
 constexpr float kAgreement = 1.5f;          // ratios within [1/1.5, 1.5] agree
 constexpr float kMinFrontShiftInRadii = 2.0f;  // an extreme must move a particle spacing to be measured
 constexpr int kMinFrontPairs = 5;
+constexpr int kMinTrackedPairs = 20;
 // The top measures the fluid's velocity only where it is a free surface carried by the fluid; where
 // fluid arrives from the side (a jet entering a column) it rises while the particles fall. Trusted when
 // at least this share of the columns moved the way their stored velocities point.
@@ -54,6 +55,25 @@ std::vector<float> extreme_ratios(const FluidSurvey& survey, double fps, float p
   return ratios;
 }
 
+// Ratios of stored to moved for the particles tracked by id in consecutive frames that moved at least r.
+std::vector<float> tracked_ratios(const FluidSurvey& survey, double fps, float particle_radius, float velocity_scale) {
+  std::vector<float> ratios;
+  for (size_t k = 0; k + 1 < survey.frames.size(); ++k) {
+    const FrameSurvey& a = survey.frames[k];
+    const FrameSurvey& b = survey.frames[k + 1];
+    size_t j = 0;
+    for (const FrameSurvey::Tracked& p : a.tracked) {  // both sorted by id
+      while (j < b.tracked.size() && b.tracked[j].id < p.id) ++j;
+      if (j == b.tracked.size() || b.tracked[j].id != p.id) continue;
+      const Vec3f moved = (b.tracked[j].position - p.position) * float(fps / double(b.frame - a.frame));
+      if (!(moved.norm() >= particle_radius * float(fps / double(b.frame - a.frame)))) continue;
+      const Vec3f stored = 0.5f * velocity_scale * (p.velocity + b.tracked[j].velocity);
+      ratios.push_back(stored.dot(moved) / moved.squaredNorm());
+    }
+  }
+  return ratios;
+}
+
 float median(std::vector<float> values) {
   std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
   return values[values.size() / 2];
@@ -81,7 +101,14 @@ VelocityCheck check_stored_velocities(const FluidSurvey& survey, double fps, flo
   }
   check.intervals = int(ratios.size());
   if (!any_velocities) return check;
-  if (check.intervals < kMinIntervals) {
+  const std::vector<float> tracked = check.intervals < kMinIntervals
+                                         ? tracked_ratios(survey, fps, particle_radius, velocity_scale)
+                                         : std::vector<float>{};
+  if (int(tracked.size()) >= kMinTrackedPairs) {
+    check.by_ids = true;
+    check.intervals = int(tracked.size());
+    check.ratio = median(tracked);
+  } else if (check.intervals < kMinIntervals) {
     const std::vector<float> fronts = extreme_ratios(survey, fps, particle_radius, velocity_scale, gravity);
     if (int(fronts.size()) < kMinFrontPairs) {
       check.note = str("stored velocities not checked against the motion: ", check.intervals,
@@ -107,7 +134,10 @@ VelocityCheck check_stored_velocities(const FluidSurvey& survey, double fps, flo
     check.ratio = median(ratios);
   }
   const std::string measured =
-      check.by_extremes
+      check.by_ids
+          ? str(" the motion of the same particles (by id: up to 64 tracked a frame, median over ", check.intervals,
+                " particle moves of at least r; the particle count changes, so the centroid cannot be used)")
+      : check.by_extremes
           ? str(" the motion of the fluid's top (in columns, the 8 highest particles' stored vertical velocity "
                 "against the rise of the 4th highest, median over ", check.intervals, " columns and frame intervals "
                 "that moved at least 2 r: a free surface moves with the fluid; the particle count changes, so the "

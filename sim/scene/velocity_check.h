@@ -15,6 +15,7 @@ namespace spume {
 
 struct VelocityCheck {
   int intervals = 0;   // frame intervals compared (by the centroid; by the extremes: intervals x sides x columns)
+  bool by_ids = false;       // the count changed too often for the centroid: measured on particles tracked by id
   bool by_extremes = false;  // the count changed too often for the centroid: measured at the fluid's extremes
   float ratio = NAN;   // median of stored / motion over them (NaN when none could be compared)
   std::string note;    // for the log: a warning when they disagree, else what was found ("" if nothing)
@@ -24,7 +25,9 @@ struct VelocityCheck {
 // centroid moved at least r/10, the mean of the two frames' mean stored velocities (times
 // `velocity_scale`) projected on the centroid's motion (displacement x fps / frames apart). The
 // velocities and the motion agree when the median ratio lies within [2/3, 3/2]; 3 intervals at least.
-// With fewer such intervals, each interval and column (FrameSurvey::fronts) of the side facing up
+// With fewer such intervals and ids in the files, the particles tracked by id (FrameSurvey::tracked) are
+// compared one by one where they moved at least r between consecutive frames: the mean of the two
+// frames' stored velocities projected on the motion; 20 at least. Without ids, each interval and column (FrameSurvey::fronts) of the side facing up
 // (against `gravity`; every side without gravity) whose extreme (4th outermost particle) moved at least
 // 2 r is compared instead. Only the top: the other sides of a FLIP cache are often the inner edge of its
 // narrow band or a wall, which move with reseeding, not with the fluid (on the Mantaflow jet the sides'

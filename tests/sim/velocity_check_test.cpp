@@ -144,6 +144,40 @@ TEST(VelocityCheck, ATopThatHardlyMovesMeasuresNothing) {
   EXPECT_NE(c.note.find("and 0 where the fluid's top moves"), std::string::npos) << c.note;
 }
 
+TEST(VelocityCheck, AGrowingCacheWithIdsIsMeasuredParticleByParticle) {
+  // An emitter-like block: the lattice plus 500 x 1.3^k particles, particle i of them always at the
+  // same place in the block (seeded by i) with id 4096 + i, so ids persist and new ones appear every
+  // frame. The count never holds; each tracked particle moves with the block: stored / moved = units.
+  FluidSurvey survey;
+  double n = 500.0;
+  for (int k = 0; k <= 10; ++k) {
+    const float t = float(k / kFps);
+    const Vec3f offset(0.0f, 1.0f - 0.5f * kG * t * t, 0.0f);
+    const Vec3f velocity(0.0f, -kG * t * 12.7f, 0.0f);
+    std::vector<Vec3f> positions;
+    std::vector<uint32_t> ids;
+    for (uint32_t i = 0; i < 4096; ++i)
+      positions.push_back(Vec3f(float(i / 256), float(i / 16 % 16), float(i % 16)) * 2.0f * kRadius + offset),
+          ids.push_back(i);
+    for (uint32_t i = 0; i < uint32_t(n); ++i) {
+      std::mt19937 rng(i);
+      std::uniform_real_distribution<float> inside(2.0f * kRadius, 0.3f - 2.0f * kRadius);
+      positions.push_back(Vec3f(inside(rng), inside(rng), inside(rng)) + offset);
+      ids.push_back(4096 + i);
+    }
+    FrameSurvey f = survey_positions(positions, std::vector<Vec3f>(positions.size(), velocity), ids);
+    f.frame = k;
+    survey.frames.push_back(f);
+    n *= 1.3;
+  }
+  const VelocityCheck c = check_stored_velocities(survey, kFps, kRadius, 1.0f);
+  EXPECT_TRUE(c.by_ids);
+  EXPECT_GE(c.intervals, 9 * 40);  // of 64 tracked a frame, most persist (new ids rarely hash lower)
+  EXPECT_NEAR(c.ratio, 12.7f, 0.01f);
+  EXPECT_EQ(c.note.rfind("warning: the stored velocities are 12.7", 0), 0u) << c.note;
+  EXPECT_NE(c.note.find("the motion of the same particles (by id"), std::string::npos) << c.note;
+}
+
 TEST(VelocityCheck, ATopThatRisesWhileItsParticlesFallIsNotTrusted) {
   // Fluid arriving from the side: each column's top rises as the stored velocities point down (the
   // falling block played backwards in position only). Every ratio is negative: nothing is claimed.
