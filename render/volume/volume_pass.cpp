@@ -1,6 +1,7 @@
 #include "render/volume/volume_pass.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <memory>
@@ -59,9 +60,11 @@ struct Pass {
 
 struct Scratch {
   TileRays tile;
-  std::vector<std::vector<Interval>> lists;  // per ray of the tile
   std::vector<BinnedSphere> sorted;
-  std::vector<uint32_t> bucket;
+  std::vector<float> depth;
+  std::vector<uint32_t> bucket, bucket_of;
+  std::vector<uint32_t> ray_start, ray_end;  // per ray of the tile: its chords in `chords`
+  std::vector<Interval> chords;
   std::vector<SphereHitScene::Hit> hits;
   std::vector<Interval> intervals;
 };
@@ -71,56 +74,101 @@ WaterView water_of(const TileRays& t, const TileRay& r) {
 }
 
 // The tile's spheres in near-to-far order (buckets about a radius deep; particle order within), so
-// each ray's chords arrive almost sorted by entry and sort_intervals is about one pass.
+// each ray's chords arrive almost sorted by entry and sort_intervals is about one pass. The order
+// only affects speed: chords are sorted by value before they are summed.
 void depth_order(const BinnedSphere* b, const BinnedSphere* e, const Camera& cam, Scratch& s) {
   const size_t n = size_t(e - b);
   Vec3f right, up, back;
   cam.basis(right, up, back);
+  const Vec3f o = cam.position;
+  // -z of the sphere's centre along the view axis, once per sphere (here and for its bucket).
+  s.depth.resize(n);
+  s.bucket_of.resize(n);
+  float* z = s.depth.data();
   float zmin = INFINITY, zmax = -INFINITY;
-  for (const BinnedSphere* p = b; p != e; ++p) {
-    const float z = -(p->centre() - cam.position).dot(back);
-    zmin = std::min(zmin, z), zmax = std::max(zmax, z);
+  for (size_t i = 0; i < n; ++i) {
+    z[i] = -(b[i].centre() - o).dot(back);
+    zmin = std::min(zmin, z[i]), zmax = std::max(zmax, z[i]);
   }
   const size_t buckets = std::clamp<size_t>(n, 1, 4096);
   const float scale = zmax > zmin ? float(buckets) / (zmax - zmin) : 0.0f;
-  auto bucket_of = [&](const BinnedSphere& p) {
-    const float z = -(p.centre() - cam.position).dot(back);
-    return std::min(buckets - 1, size_t((z - zmin) * scale));
-  };
   s.bucket.assign(buckets + 1, 0);
-  for (const BinnedSphere* p = b; p != e; ++p) ++s.bucket[bucket_of(*p) + 1];
+  for (size_t i = 0; i < n; ++i) {
+    const uint32_t k = uint32_t(std::min(buckets - 1, size_t((z[i] - zmin) * scale)));
+    s.bucket_of[i] = k;
+    ++s.bucket[k + 1];
+  }
   for (size_t i = 0; i < buckets; ++i) s.bucket[i + 1] += s.bucket[i];
   s.sorted.resize(n);
-  for (const BinnedSphere* p = b; p != e; ++p) s.sorted[s.bucket[bucket_of(*p)]++] = *p;
+  for (size_t i = 0; i < n; ++i) s.sorted[s.bucket[s.bucket_of[i]]++] = b[i];
+}
+
+// Per ray of the tile, room for one chord per candidate sphere: the rectangles summed by a 2D
+// difference array, so the chord loop below stores without a size check and without a branch.
+void reserve_chords(const TileRays& t, Scratch& s) {
+  const size_t w = size_t(t.w), h = size_t(t.h), spp = size_t(t.spp);
+  std::array<uint32_t, (kTile + 1) * (kTile + 1)> diff{};
+  for (const BinnedSphere& sp : s.sorted) {
+    const size_t x0 = size_t(sp.x0()), x1 = std::min(size_t(sp.x1()), w - 1) + 1;
+    const size_t y0 = size_t(sp.y0()), y1 = std::min(size_t(sp.y1()), h - 1) + 1;
+    if (x0 >= x1 || y0 >= y1) continue;
+    ++diff[y0 * (kTile + 1) + x0], ++diff[y1 * (kTile + 1) + x1];
+    --diff[y0 * (kTile + 1) + x1], --diff[y1 * (kTile + 1) + x0];
+  }
+  s.ray_start.resize(w * h * spp + 1);
+  s.ray_end.resize(w * h * spp);
+  std::array<uint32_t, kTile> column{};  // running sums down each column
+  uint32_t total = 0;
+  for (size_t y = 0; y < h; ++y) {
+    uint32_t row = 0;
+    for (size_t x = 0; x < w; ++x) {
+      row += diff[y * (kTile + 1) + x];
+      column[x] += row;
+      for (size_t k = 0; k < spp; ++k) {
+        const size_t ri = (y * w + x) * spp + k;
+        s.ray_start[ri] = s.ray_end[ri] = total;
+        total += column[x];
+      }
+    }
+  }
+  s.ray_start[w * h * spp] = total;
+  if (s.chords.size() < total) s.chords.resize(total);
 }
 
 size_t exact_screen_bins(const Pass& pass, size_t tile, Scratch& s, std::vector<RaySample>& out) {
-  TileRays& t = s.tile;
+  const TileRays& t = s.tile;
   const int spp = t.spp;
-  if (s.lists.size() < t.rays.size()) s.lists.resize(t.rays.size());
-  for (size_t i = 0; i < t.rays.size(); ++i) s.lists[i].clear();
   depth_order(pass.bins->begin(tile), pass.bins->end(tile), *pass.camera, s);
+  reserve_chords(t, s);
   const Vec3d o = pass.camera->position.cast<double>();
-  size_t found = 0;
+  Interval* chords = s.chords.data();
+  uint32_t* end = s.ray_end.data();
   for (const BinnedSphere& sp : s.sorted) {
     const Vec3d oc = sp.centre().cast<double>() - o;
     const double oc2 = oc.squaredNorm(), r2 = pass.r2[sp.type()];
-    for (int ly = sp.y0(); ly <= sp.y1() && ly < t.h; ++ly)
-      for (int lx = sp.x0(); lx <= sp.x1() && lx < t.w; ++lx)
+    const uint32_t type = sp.type();
+    const int y1 = std::min(sp.y1(), t.h - 1), x1 = std::min(sp.x1(), t.w - 1);
+    for (int ly = sp.y0(); ly <= y1; ++ly)
+      for (int lx = sp.x0(); lx <= x1; ++lx)
         for (int k = 0; k < spp; ++k) {
           const size_t ri = (size_t(ly) * size_t(t.w) + size_t(lx)) * size_t(spp) + size_t(k);
           const TileRay& r = t.rays[ri];
-          double t0, t1;
-          if (r.misses() || !ray_sphere_chord(oc, oc2, r.direction, r2, t0, t1)) continue;
-          t0 = std::max(t0, r.t_in), t1 = std::min(t1, r.t_out);
-          if (t1 > t0) s.lists[ri].push_back({float(t0 - r.t_in), float(t1 - r.t_in), sp.type()});
+          // ray_sphere_chord without its branch: a miss (or a ray that misses the bounds, whose
+          // t_in > t_out) leaves t1 <= t0 and the slot is reused by the ray's next chord.
+          const double tc = oc.dot(r.direction), b2 = oc2 - tc * tc;
+          const double hw = std::sqrt(std::max(r2 - b2, 0.0));
+          const double t0 = std::max(tc - hw, r.t_in), t1 = std::min(tc + hw, r.t_out);
+          chords[end[ri]] = {float(t0 - r.t_in), float(t1 - r.t_in), type};
+          end[ri] += t1 > t0 ? 1u : 0u;
         }
   }
+  size_t found = 0;
   for (size_t i = 0; i < t.rays.size(); ++i) {
-    std::vector<Interval>& l = s.lists[i];
-    found += l.size();
-    sort_intervals(l.data(), l.size());
-    out[i] = absorb_intervals(l.data(), l.size(), pass.shading, water_of(t, t.rays[i]));
+    Interval* l = chords + s.ray_start[i];
+    const size_t n = end[i] - s.ray_start[i];
+    found += n;
+    sort_intervals(l, n);
+    out[i] = absorb_intervals(l, n, pass.shading, water_of(t, t.rays[i]));
   }
   return found;
 }
