@@ -65,9 +65,9 @@ ScreenBins::ScreenBins(const DiffuseFrame& frame, const std::array<float, kDiffu
                        const SphereProjector& projector, int width, int height) {
   if (width <= 0 || height <= 0 || width > 65535 || height > 65535)
     fail("volume pass: image size ", width, "x", height, " outside 1..65535");
-  tiles_x_ = (width + kTile - 1) / kTile, tiles_y_ = (height + kTile - 1) / kTile;
-  const size_t tiles = size_t(tiles_x_) * size_t(tiles_y_), n = frame.size();
-  // Chunking depends on n only, so every tile list comes out in particle order for any thread count.
+  bins_x_ = (width + kBin - 1) / kBin, bins_y_ = (height + kBin - 1) / kBin;
+  const size_t bins = size_t(bins_x_) * size_t(bins_y_), n = frame.size();
+  // Chunking depends on n only, so every bin list comes out in particle order for any thread count.
   const size_t chunks = std::clamp<size_t>(n / 16384, 1, 64);
   auto chunk_begin = [&](size_t c) { return c * n / chunks; };
 
@@ -75,10 +75,10 @@ ScreenBins::ScreenBins(const DiffuseFrame& frame, const std::array<float, kDiffu
     uint16_t x0, y0, x1, y1;
   };
   HugeBuffer<Rect> rect(n);
-  std::vector<uint32_t> count(chunks * tiles, 0);  // per chunk, per tile
+  std::vector<uint32_t> count(chunks * bins, 0);  // per chunk, per bin
   parallel_for(chunks, 1, [&](size_t c0, size_t c1) {
     for (size_t c = c0; c < c1; ++c) {
-      uint32_t* cnt = count.data() + c * tiles;
+      uint32_t* cnt = count.data() + c * bins;
       for (size_t i = chunk_begin(c); i < chunk_begin(c + 1); ++i) {
         const float r = radius[size_t(frame.types[i])];
         int x0, y0, x1, y1;
@@ -87,41 +87,41 @@ ScreenBins::ScreenBins(const DiffuseFrame& frame, const std::array<float, kDiffu
           continue;
         }
         rect[i] = {uint16_t(x0), uint16_t(y0), uint16_t(x1), uint16_t(y1)};
-        for (int ty = y0 / kTile; ty <= y1 / kTile; ++ty)
-          for (int tx = x0 / kTile; tx <= x1 / kTile; ++tx) ++cnt[size_t(ty) * size_t(tiles_x_) + size_t(tx)];
+        for (int by = y0 / kBin; by <= y1 / kBin; ++by)
+          for (int bx = x0 / kBin; bx <= x1 / kBin; ++bx) ++cnt[size_t(by) * size_t(bins_x_) + size_t(bx)];
       }
     }
   });
 
-  // Offsets: tile-major, then chunk; `count` becomes each (chunk, tile)'s write cursor.
-  tile_start_.assign(tiles + 1, 0);
+  // Offsets: bin-major, then chunk; `count` becomes each (chunk, bin)'s write cursor.
+  bin_start_.assign(bins + 1, 0);
   size_t total = 0;
-  for (size_t t = 0; t < tiles; ++t) {
-    tile_start_[t] = total;
+  for (size_t b = 0; b < bins; ++b) {
+    bin_start_[b] = total;
     for (size_t c = 0; c < chunks; ++c) {
-      const size_t k = count[c * tiles + t];
-      count[c * tiles + t] = uint32_t(total - tile_start_[t]);
+      const size_t k = count[c * bins + b];
+      count[c * bins + b] = uint32_t(total - bin_start_[b]);
       total += k;
     }
   }
-  tile_start_[tiles] = total;
+  bin_start_[bins] = total;
   entries_.allocate(total);
 
   parallel_for(chunks, 1, [&](size_t c0, size_t c1) {
     for (size_t c = c0; c < c1; ++c) {
-      uint32_t* cursor = count.data() + c * tiles;
+      uint32_t* cursor = count.data() + c * bins;
       for (size_t i = chunk_begin(c); i < chunk_begin(c + 1); ++i) {
         const Rect& q = rect[i];
         if (q.x0 > q.x1) continue;
         const Vec3f& p = frame.positions[i];
-        const uint32_t type = uint32_t(frame.types[i]) << 16;
-        for (int ty = q.y0 / kTile; ty <= q.y1 / kTile; ++ty)
-          for (int tx = q.x0 / kTile; tx <= q.x1 / kTile; ++tx) {
-            const int bx = tx * kTile, by = ty * kTile;
-            const uint32_t lx0 = uint32_t(std::max<int>(q.x0, bx) - bx), lx1 = uint32_t(std::min<int>(q.x1, bx + kTile - 1) - bx);
-            const uint32_t ly0 = uint32_t(std::max<int>(q.y0, by) - by), ly1 = uint32_t(std::min<int>(q.y1, by + kTile - 1) - by);
-            const size_t t = size_t(ty) * size_t(tiles_x_) + size_t(tx);
-            entries_[tile_start_[t] + cursor[t]++] = {p.x(), p.y(), p.z(), lx0 | (lx1 << 4) | (ly0 << 8) | (ly1 << 12) | type};
+        const uint32_t type = uint32_t(frame.types[i]);
+        for (int by = q.y0 / kBin; by <= q.y1 / kBin; ++by)
+          for (int bx = q.x0 / kBin; bx <= q.x1 / kBin; ++bx) {
+            const int ox = bx * kBin, oy = by * kBin;
+            const uint32_t lx0 = uint32_t(std::max<int>(q.x0, ox) - ox), lx1 = uint32_t(std::min<int>(q.x1, ox + kBin - 1) - ox);
+            const uint32_t ly0 = uint32_t(std::max<int>(q.y0, oy) - oy), ly1 = uint32_t(std::min<int>(q.y1, oy + kBin - 1) - oy);
+            const size_t b = size_t(by) * size_t(bins_x_) + size_t(bx);
+            entries_[bin_start_[b] + cursor[b]++] = BinnedSphere::make(p, lx0, lx1, ly0, ly1, type);
           }
       }
     }

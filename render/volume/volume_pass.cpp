@@ -23,7 +23,7 @@
 namespace spume {
 namespace {
 
-constexpr int kTile = ScreenBins::kTile;
+constexpr int kTile = ScreenBins::kTile, kBin = ScreenBins::kBin;
 
 bool finite3(const Vec3f& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
 
@@ -60,7 +60,8 @@ struct Pass {
 
 struct Scratch {
   TileRays tile;
-  std::vector<BinnedSphere> sorted;
+  std::vector<BinnedSphere> bin_sorted;  // the bin's spheres, near to far
+  std::vector<BinnedSphere> sorted;      // those of the current tile, rectangles tile-relative
   std::vector<float> depth;
   std::vector<uint32_t> bucket, bucket_of;
   std::vector<uint32_t> ray_start, ray_end;  // per ray of the tile: its chords in `chords`
@@ -73,7 +74,7 @@ WaterView water_of(const TileRays& t, const TileRay& r) {
   return {t.water.data() + r.water_begin, size_t(r.water_end - r.water_begin)};
 }
 
-// The tile's spheres in near-to-far order (buckets about a radius deep; particle order within), so
+// The bin's spheres in near-to-far order (buckets about a radius deep; particle order within), so
 // each ray's chords arrive almost sorted by entry and sort_intervals is about one pass. The order
 // only affects speed: chords are sorted by value before they are summed.
 void depth_order(const BinnedSphere* b, const BinnedSphere* e, const Camera& cam, Scratch& s) {
@@ -90,7 +91,7 @@ void depth_order(const BinnedSphere* b, const BinnedSphere* e, const Camera& cam
     z[i] = -(b[i].centre() - o).dot(back);
     zmin = std::min(zmin, z[i]), zmax = std::max(zmax, z[i]);
   }
-  const size_t buckets = std::clamp<size_t>(n, 1, 4096);
+  const size_t buckets = std::clamp<size_t>(n, 1, 8192);
   const float scale = zmax > zmin ? float(buckets) / (zmax - zmin) : 0.0f;
   s.bucket.assign(buckets + 1, 0);
   for (size_t i = 0; i < n; ++i) {
@@ -99,8 +100,22 @@ void depth_order(const BinnedSphere* b, const BinnedSphere* e, const Camera& cam
     ++s.bucket[k + 1];
   }
   for (size_t i = 0; i < buckets; ++i) s.bucket[i + 1] += s.bucket[i];
-  s.sorted.resize(n);
-  for (size_t i = 0; i < n; ++i) s.sorted[s.bucket[s.bucket_of[i]]++] = b[i];
+  s.bin_sorted.resize(n);
+  for (size_t i = 0; i < n; ++i) s.bin_sorted[s.bucket[s.bucket_of[i]]++] = b[i];
+}
+
+// The bin's spheres seen in the tile at (ox, oy) of the bin, w x h pixels, in the same order, with
+// their rectangles clipped to the tile and made relative to it.
+void tile_spheres(Scratch& s, int ox, int oy, int w, int h) {
+  s.sorted.resize(s.bin_sorted.size());
+  size_t k = 0;
+  for (const BinnedSphere& sp : s.bin_sorted) {
+    const int x0 = std::max(sp.x0(), ox), x1 = std::min(sp.x1(), ox + w - 1);
+    const int y0 = std::max(sp.y0(), oy), y1 = std::min(sp.y1(), oy + h - 1);
+    s.sorted[k] = BinnedSphere::make(sp.centre(), uint32_t(x0 - ox), uint32_t(x1 - ox), uint32_t(y0 - oy), uint32_t(y1 - oy), sp.type());
+    k += x0 <= x1 && y0 <= y1 ? 1 : 0;
+  }
+  s.sorted.resize(k);
 }
 
 // Per ray of the tile, room for one chord per candidate sphere: the rectangles summed by a 2D
@@ -109,9 +124,7 @@ void reserve_chords(const TileRays& t, Scratch& s) {
   const size_t w = size_t(t.w), h = size_t(t.h), spp = size_t(t.spp);
   std::array<uint32_t, (kTile + 1) * (kTile + 1)> diff{};
   for (const BinnedSphere& sp : s.sorted) {
-    const size_t x0 = size_t(sp.x0()), x1 = std::min(size_t(sp.x1()), w - 1) + 1;
-    const size_t y0 = size_t(sp.y0()), y1 = std::min(size_t(sp.y1()), h - 1) + 1;
-    if (x0 >= x1 || y0 >= y1) continue;
+    const size_t x0 = size_t(sp.x0()), x1 = size_t(sp.x1()) + 1, y0 = size_t(sp.y0()), y1 = size_t(sp.y1()) + 1;
     ++diff[y0 * (kTile + 1) + x0], ++diff[y1 * (kTile + 1) + x1];
     --diff[y0 * (kTile + 1) + x1], --diff[y1 * (kTile + 1) + x0];
   }
@@ -135,10 +148,10 @@ void reserve_chords(const TileRays& t, Scratch& s) {
   if (s.chords.size() < total) s.chords.resize(total);
 }
 
-size_t exact_screen_bins(const Pass& pass, size_t tile, Scratch& s, std::vector<RaySample>& out) {
+// The tile's chords from s.sorted (tile_spheres).
+size_t exact_screen_bins(const Pass& pass, Scratch& s, std::vector<RaySample>& out) {
   const TileRays& t = s.tile;
   const int spp = t.spp;
-  depth_order(pass.bins->begin(tile), pass.bins->end(tile), *pass.camera, s);
   reserve_chords(t, s);
   const Vec3d o = pass.camera->position.cast<double>();
   Interval* chords = s.chords.data();
@@ -147,9 +160,8 @@ size_t exact_screen_bins(const Pass& pass, size_t tile, Scratch& s, std::vector<
     const Vec3d oc = sp.centre().cast<double>() - o;
     const double oc2 = oc.squaredNorm(), r2 = pass.r2[sp.type()];
     const uint32_t type = sp.type();
-    const int y1 = std::min(sp.y1(), t.h - 1), x1 = std::min(sp.x1(), t.w - 1);
-    for (int ly = sp.y0(); ly <= y1; ++ly)
-      for (int lx = sp.x0(); lx <= x1; ++lx)
+    for (int ly = sp.y0(), y1 = sp.y1(); ly <= y1; ++ly)
+      for (int lx = sp.x0(), x1 = sp.x1(); lx <= x1; ++lx)
         for (int k = 0; k < spp; ++k) {
           const size_t ri = (size_t(ly) * size_t(t.w) + size_t(lx)) * size_t(spp) + size_t(k);
           const TileRay& r = t.rays[ri];
@@ -334,28 +346,39 @@ VolumeImage render_volume(const DiffuseFrame& frame, const Camera& camera, const
   st.build_seconds = build_start.seconds();
 
   const Stopwatch trace_start;
-  const int tiles_x = (camera.width + kTile - 1) / kTile, tiles_y = (camera.height + kTile - 1) / kTile;
+  // Bins of 2x2 tiles (ScreenBins::kBin), each tile's pixels written by one task only.
+  const int bins_x = (camera.width + kBin - 1) / kBin, bins_y = (camera.height + kBin - 1) / kBin;
   tbb::enumerable_thread_specific<Scratch> scratch;
   std::atomic<size_t> found{0};
-  parallel_for(size_t(tiles_x) * size_t(tiles_y), 1, [&](size_t b, size_t e) {
+  parallel_for(size_t(bins_x) * size_t(bins_y), 1, [&](size_t b, size_t e) {
     Scratch& s = scratch.local();
     std::vector<RaySample> samples;
-    for (size_t tile = b; tile < e; ++tile) {
-      const int x0 = int(tile % size_t(tiles_x)) * kTile, y0 = int(tile / size_t(tiles_x)) * kTile;
-      const int w = std::min(kTile, camera.width - x0), h = std::min(kTile, camera.height - y0);
-      make_tile_rays(pass.ray_params, x0, y0, w, h, s.tile);
-      samples.assign(s.tile.rays.size(), RaySample{});
-      size_t n = 0;
-      if (pass.grids) n = march(pass, s, samples);
-      else if (pass.bins) n = exact_screen_bins(pass, tile, s, samples);
-      else n = exact_embree(pass, s, samples);
-      found += n;
-      for (int ly = 0; ly < h; ++ly)
-        for (int lx = 0; lx < w; ++lx) {
-          PixelAverage avg;
-          for (int k = 0; k < spp; ++k) avg.add(samples[(size_t(ly) * size_t(w) + size_t(lx)) * size_t(spp) + size_t(k)]);
-          const size_t p = size_t(y0 + ly) * size_t(camera.width) + size_t(x0 + lx);
-          avg.finish(img.transmittance[p], img.color[p]);
+    for (size_t bin = b; bin < e; ++bin) {
+      const int bx = int(bin % size_t(bins_x)) * kBin, by = int(bin / size_t(bins_x)) * kBin;
+      if (pass.bins) depth_order(pass.bins->begin(bin), pass.bins->end(bin), *pass.camera, s);
+      for (int oy = 0; oy < kBin && by + oy < camera.height; oy += kTile)
+        for (int ox = 0; ox < kBin && bx + ox < camera.width; ox += kTile) {
+          const int x0 = bx + ox, y0 = by + oy;
+          const int w = std::min(kTile, camera.width - x0), h = std::min(kTile, camera.height - y0);
+          make_tile_rays(pass.ray_params, x0, y0, w, h, s.tile);
+          samples.assign(s.tile.rays.size(), RaySample{});
+          size_t n = 0;
+          if (pass.grids) {
+            n = march(pass, s, samples);
+          } else if (pass.bins) {
+            tile_spheres(s, ox, oy, w, h);
+            n = exact_screen_bins(pass, s, samples);
+          } else {
+            n = exact_embree(pass, s, samples);
+          }
+          found += n;
+          for (int ly = 0; ly < h; ++ly)
+            for (int lx = 0; lx < w; ++lx) {
+              PixelAverage avg;
+              for (int k = 0; k < spp; ++k) avg.add(samples[(size_t(ly) * size_t(w) + size_t(lx)) * size_t(spp) + size_t(k)]);
+              const size_t p = size_t(y0 + ly) * size_t(camera.width) + size_t(x0 + lx);
+              avg.finish(img.transmittance[p], img.color[p]);
+            }
         }
     }
   });
