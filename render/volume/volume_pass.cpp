@@ -148,36 +148,47 @@ void reserve_chords(const TileRays& t, Scratch& s) {
   if (s.chords.size() < total) s.chords.resize(total);
 }
 
-// The tile's chords from s.sorted (tile_spheres).
-size_t exact_screen_bins(const Pass& pass, Scratch& s, std::vector<RaySample>& out) {
+// Every candidate chord of the tile's spheres (s.sorted) into its ray's room (reserve_chords).
+// ray_sphere_chord without its branch: a miss (or a ray that misses the bounds, whose t_in >
+// t_out) leaves t1 <= t0, and the slot is reused by the ray's next chord. One sample per pixel,
+// the usual case, gets its own copy of the loop without the sample index arithmetic.
+template <bool kOneSample>
+void tile_chords(const Pass& pass, Scratch& s) {
   const TileRays& t = s.tile;
-  const int spp = t.spp;
-  reserve_chords(t, s);
+  const size_t spp = kOneSample ? 1 : size_t(t.spp), w = size_t(t.w);
   const Vec3d o = pass.camera->position.cast<double>();
+  const TileRay* rays = t.rays.data();
   Interval* chords = s.chords.data();
   uint32_t* end = s.ray_end.data();
   for (const BinnedSphere& sp : s.sorted) {
     const Vec3d oc = sp.centre().cast<double>() - o;
     const double oc2 = oc.squaredNorm(), r2 = pass.r2[sp.type()];
     const uint32_t type = sp.type();
-    for (int ly = sp.y0(), y1 = sp.y1(); ly <= y1; ++ly)
-      for (int lx = sp.x0(), x1 = sp.x1(); lx <= x1; ++lx)
-        for (int k = 0; k < spp; ++k) {
-          const size_t ri = (size_t(ly) * size_t(t.w) + size_t(lx)) * size_t(spp) + size_t(k);
-          const TileRay& r = t.rays[ri];
-          // ray_sphere_chord without its branch: a miss (or a ray that misses the bounds, whose
-          // t_in > t_out) leaves t1 <= t0 and the slot is reused by the ray's next chord.
-          const double tc = oc.dot(r.direction), b2 = oc2 - tc * tc;
-          const double hw = std::sqrt(std::max(r2 - b2, 0.0));
-          const double t0 = std::max(tc - hw, r.t_in), t1 = std::min(tc + hw, r.t_out);
-          chords[end[ri]] = {float(t0 - r.t_in), float(t1 - r.t_in), type};
-          end[ri] += t1 > t0 ? 1u : 0u;
-        }
+    const size_t x0 = size_t(sp.x0()) * spp, x1 = (size_t(sp.x1()) + 1) * spp;
+    for (size_t ly = size_t(sp.y0()), y1 = size_t(sp.y1()); ly <= y1; ++ly) {
+      const size_t row = ly * w * spp;
+      for (size_t ri = row + x0; ri < row + x1; ++ri) {
+        const TileRay& r = rays[ri];
+        const double tc = oc.dot(r.direction), b2 = oc2 - tc * tc;
+        const double hw = std::sqrt(std::max(r2 - b2, 0.0));
+        const double t0 = std::max(tc - hw, r.t_in), t1 = std::min(tc + hw, r.t_out);
+        chords[end[ri]] = {float(t0 - r.t_in), float(t1 - r.t_in), type};
+        end[ri] += t1 > t0 ? 1u : 0u;
+      }
+    }
   }
+}
+
+// The tile's transmittance and colour from s.sorted (tile_spheres).
+size_t exact_screen_bins(const Pass& pass, Scratch& s, std::vector<RaySample>& out) {
+  const TileRays& t = s.tile;
+  reserve_chords(t, s);
+  if (t.spp == 1) tile_chords<true>(pass, s);
+  else tile_chords<false>(pass, s);
   size_t found = 0;
   for (size_t i = 0; i < t.rays.size(); ++i) {
-    Interval* l = chords + s.ray_start[i];
-    const size_t n = end[i] - s.ray_start[i];
+    Interval* l = s.chords.data() + s.ray_start[i];
+    const size_t n = s.ray_end[i] - s.ray_start[i];
     found += n;
     sort_intervals(l, n);
     out[i] = absorb_intervals(l, n, pass.shading, water_of(t, t.rays[i]));
