@@ -61,6 +61,40 @@ bool SphereProjector::pixel_rect(const Vec3f& centre, float radius, int& x0, int
   return true;
 }
 
+void SphereProjector::pixel_rects(const Vec3f* centres, const float* radii, size_t n, Rects& out) const {
+  // pixel_rect's expressions in its order, as selects instead of early returns.
+  const float ox = origin_.x(), oy = origin_.y(), oz = origin_.z();
+  const float cx = 0.5f * float(width_), cy = 0.5f * float(height_), w = float(width_), h = float(height_);
+  float px[kBatch], py[kBatch], pz[kBatch];
+  for (size_t i = 0; i < n; ++i) px[i] = centres[i].x(), py[i] = centres[i].y(), pz[i] = centres[i].z();
+  for (size_t i = 0; i < n; ++i) {
+    const float vx = px[i] - ox, vy = py[i] - oy, vz = pz[i] - oz;
+    const float X = vx * right_.x() + vy * right_.y() + vz * right_.z();
+    const float Y = vx * up_.x() + vy * up_.y() + vz * up_.z();
+    const float Z = vx * forward_.x() + vy * forward_.y() + vz * forward_.z();
+    const float radius = radii[i];
+    const float aX = std::abs(X), aY = std::abs(Y);
+    const float r = radius * (1.0f + 1e-5f) + 1e-6f * (aX + aY + std::abs(Z));
+    const bool seen = (radius > 0.0f) & !(Z < -r) & !((aX - tan_x_ * Z) * cull_x_ > r) & !((aY - tan_y_ * Z) * cull_y_ > r);
+    const bool whole = Z <= r;
+    const float den = Z * Z - r * r, inv = 1.0f / den;
+    const float rx = r * std::sqrt(std::max(X * X + den, 0.0f)), ry = r * std::sqrt(std::max(Y * Y + den, 0.0f));
+    const float px_lo = cx + scale_x_ * (X * Z - rx) * inv, px_hi = cx + scale_x_ * (X * Z + rx) * inv;
+    const float py_lo = cy - scale_y_ * (Y * Z + ry) * inv, py_hi = cy - scale_y_ * (Y * Z - ry) * inv;
+    const float ax0 = std::min(std::max(px_lo - lo_margin_, -2.0f), w + 2.0f), ax1 = std::min(std::max(px_hi + hi_margin_, -2.0f), w + 2.0f);
+    const float ay0 = std::min(std::max(py_lo - lo_margin_, -2.0f), h + 2.0f), ay1 = std::min(std::max(py_hi + hi_margin_, -2.0f), h + 2.0f);
+    const bool ordered = (ax0 <= ax1) & (ay0 <= ay1);
+    const int ix0 = int(ax0), ix1 = int(ax1), iy0 = int(ay0), iy1 = int(ay1);
+    const int x0 = std::max(ix0 + (ax0 > float(ix0) ? 1 : 0), 0), x1 = std::min(ix1 - (ax1 < float(ix1) ? 1 : 0), width_ - 1);
+    const int y0 = std::max(iy0 + (ay0 > float(iy0) ? 1 : 0), 0), y1 = std::min(iy1 - (ay1 < float(iy1) ? 1 : 0), height_ - 1);
+    const bool ok = seen & (whole | (ordered & (x0 <= x1) & (y0 <= y1)));
+    out.x0[i] = !ok ? 1 : whole ? 0 : x0;
+    out.x1[i] = !ok ? 0 : whole ? width_ - 1 : x1;
+    out.y0[i] = !ok ? 0 : whole ? 0 : y0;
+    out.y1[i] = !ok ? 0 : whole ? height_ - 1 : y1;
+  }
+}
+
 ScreenBins::ScreenBins(const DiffuseFrame& frame, const std::array<float, kDiffuseTypeCount>& radius,
                        const SphereProjector& projector, int width, int height) {
   if (width <= 0 || height <= 0 || width > 65535 || height > 65535)
@@ -79,16 +113,22 @@ ScreenBins::ScreenBins(const DiffuseFrame& frame, const std::array<float, kDiffu
   parallel_for(chunks, 1, [&](size_t c0, size_t c1) {
     for (size_t c = c0; c < c1; ++c) {
       uint32_t* cnt = count.data() + c * bins;
-      for (size_t i = chunk_begin(c); i < chunk_begin(c + 1); ++i) {
-        const float r = radius[size_t(frame.types[i])];
-        int x0, y0, x1, y1;
-        if (!(r > 0.0f) || !projector.pixel_rect(frame.positions[i], r, x0, y0, x1, y1)) {
-          rect[i] = {1, 0, 0, 0};  // empty: x0 > x1
-          continue;
+      SphereProjector::Rects q;
+      float r[SphereProjector::kBatch];
+      for (size_t b = chunk_begin(c), e = chunk_begin(c + 1); b < e; b += SphereProjector::kBatch) {
+        const size_t m = std::min(SphereProjector::kBatch, e - b);
+        for (size_t j = 0; j < m; ++j) r[j] = radius[size_t(frame.types[b + j])];
+        projector.pixel_rects(frame.positions.data() + b, r, m, q);
+        for (size_t j = 0; j < m; ++j) {
+          const int x0 = q.x0[j], y0 = q.y0[j], x1 = q.x1[j], y1 = q.y1[j];
+          if (x0 > x1) {
+            rect[b + j] = {1, 0, 0, 0};  // empty: x0 > x1
+            continue;
+          }
+          rect[b + j] = {uint16_t(x0), uint16_t(y0), uint16_t(x1), uint16_t(y1)};
+          for (int by = y0 / kBin; by <= y1 / kBin; ++by)
+            for (int bx = x0 / kBin; bx <= x1 / kBin; ++bx) ++cnt[size_t(by) * size_t(bins_x_) + size_t(bx)];
         }
-        rect[i] = {uint16_t(x0), uint16_t(y0), uint16_t(x1), uint16_t(y1)};
-        for (int by = y0 / kBin; by <= y1 / kBin; ++by)
-          for (int bx = x0 / kBin; bx <= x1 / kBin; ++bx) ++cnt[size_t(by) * size_t(bins_x_) + size_t(bx)];
       }
     }
   });

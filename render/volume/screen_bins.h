@@ -26,6 +26,14 @@ class SphereProjector {
   // camera plane projects unboundedly and gets the whole image.
   // Float arithmetic (it runs once per particle): rounding is ~1e-4 pixel, inside the margin.
   bool pixel_rect(const Vec3f& centre, float radius, int& x0, int& y0, int& x1, int& y1) const;
+  // pixel_rect for n <= kBatch spheres at once, the same arithmetic without branches so the
+  // compiler runs it four lanes wide (it was a fifth of binning 15M spheres). A radius <= 0 or a
+  // sphere pixel_rect rejects gets x0 > x1.
+  static constexpr size_t kBatch = 64;
+  struct Rects {
+    int x0[kBatch], y0[kBatch], x1[kBatch], y1[kBatch];
+  };
+  void pixel_rects(const Vec3f* centres, const float* radii, size_t n, Rects& out) const;
 
  private:
   Vec3f origin_, right_, up_, forward_;
