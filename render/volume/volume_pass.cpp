@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 
+#include <emmintrin.h>
 #include <tbb/enumerable_thread_specific.h>
 
 #include "render/keys/render_keys.h"
@@ -66,6 +67,7 @@ struct Scratch {
   std::vector<uint32_t> bucket, bucket_of;
   std::vector<uint32_t> ray_start, ray_end;  // per ray of the tile: its chords in `chords`
   std::vector<Interval> chords;
+  std::vector<double> ray_soa;  // ray_columns
   std::vector<SphereHitScene::Hit> hits;
   std::vector<Interval> intervals;
 };
@@ -148,31 +150,63 @@ void reserve_chords(const TileRays& t, Scratch& s) {
   if (s.chords.size() < total) s.chords.resize(total);
 }
 
-// Every candidate chord of the tile's spheres (s.sorted) into its ray's room (reserve_chords).
-// ray_sphere_chord without its branch: a miss (or a ray that misses the bounds, whose t_in >
-// t_out) leaves t1 <= t0, and the slot is reused by the ray's next chord. One sample per pixel,
-// the usual case, gets its own copy of the loop without the sample index arithmetic.
-template <bool kOneSample>
+// The tile's rays as arrays of doubles (direction x, y, z, t_in, t_out), for the chord loop.
+void ray_columns(const TileRays& t, Scratch& s) {
+  const size_t n = t.rays.size();
+  s.ray_soa.resize(5 * n);
+  double* c = s.ray_soa.data();
+  for (size_t i = 0; i < n; ++i) {
+    const TileRay& r = t.rays[i];
+    c[i] = r.direction.x(), c[n + i] = r.direction.y(), c[2 * n + i] = r.direction.z();
+    c[3 * n + i] = r.t_in, c[4 * n + i] = r.t_out;
+  }
+}
+
+// Every candidate chord of the tile's spheres (s.sorted) into its ray's room (reserve_chords):
+// ray_sphere_chord and the clip to [t_in, t_out] for two rays at once (SSE2, part of x86-64),
+// without a branch: a miss (or a ray that misses the bounds, t_in > t_out) leaves t1 <= t0, and
+// the slot is reused by the ray's next chord. The same double operations in the same order as the
+// scalar code (Eigen's dot is (x + y) + z; std::max(a, b) is _mm_max_pd(b, a)), so the same bits.
+// The square root was the loop's bottleneck; two lanes halve its count.
 void tile_chords(const Pass& pass, Scratch& s) {
   const TileRays& t = s.tile;
-  const size_t spp = kOneSample ? 1 : size_t(t.spp), w = size_t(t.w);
+  const size_t n = t.rays.size(), spp = size_t(t.spp), w = size_t(t.w);
+  ray_columns(t, s);
+  const double *dx = s.ray_soa.data(), *dy = dx + n, *dz = dx + 2 * n, *tin = dx + 3 * n, *tout = dx + 4 * n;
   const Vec3d o = pass.camera->position.cast<double>();
-  const TileRay* rays = t.rays.data();
   Interval* chords = s.chords.data();
   uint32_t* end = s.ray_end.data();
+  const __m128d zero = _mm_setzero_pd();
   for (const BinnedSphere& sp : s.sorted) {
     const Vec3d oc = sp.centre().cast<double>() - o;
     const double oc2 = oc.squaredNorm(), r2 = pass.r2[sp.type()];
     const uint32_t type = sp.type();
+    const __m128d ocx = _mm_set1_pd(oc.x()), ocy = _mm_set1_pd(oc.y()), ocz = _mm_set1_pd(oc.z());
+    const __m128d oc2v = _mm_set1_pd(oc2), r2v = _mm_set1_pd(r2);
     const size_t x0 = size_t(sp.x0()) * spp, x1 = (size_t(sp.x1()) + 1) * spp;
     for (size_t ly = size_t(sp.y0()), y1 = size_t(sp.y1()); ly <= y1; ++ly) {
-      const size_t row = ly * w * spp;
-      for (size_t ri = row + x0; ri < row + x1; ++ri) {
-        const TileRay& r = rays[ri];
-        const double tc = oc.dot(r.direction), b2 = oc2 - tc * tc;
+      const size_t row = ly * w * spp, e = row + x1;
+      size_t ri = row + x0;
+      for (; ri + 2 <= e; ri += 2) {
+        const __m128d tc = _mm_add_pd(_mm_add_pd(_mm_mul_pd(ocx, _mm_loadu_pd(dx + ri)), _mm_mul_pd(ocy, _mm_loadu_pd(dy + ri))),
+                                      _mm_mul_pd(ocz, _mm_loadu_pd(dz + ri)));
+        const __m128d b2 = _mm_sub_pd(oc2v, _mm_mul_pd(tc, tc));
+        const __m128d hw = _mm_sqrt_pd(_mm_max_pd(zero, _mm_sub_pd(r2v, b2)));
+        const __m128d a = _mm_loadu_pd(tin + ri), b = _mm_loadu_pd(tout + ri);
+        const __m128d t0 = _mm_max_pd(a, _mm_sub_pd(tc, hw)), t1 = _mm_min_pd(b, _mm_add_pd(tc, hw));
+        const int hit = _mm_movemask_pd(_mm_cmpgt_pd(t1, t0));
+        alignas(16) float f[4];
+        _mm_store_ps(f, _mm_movelh_ps(_mm_cvtpd_ps(_mm_sub_pd(t0, a)), _mm_cvtpd_ps(_mm_sub_pd(t1, a))));
+        chords[end[ri]] = {f[0], f[2], type};
+        end[ri] += uint32_t(hit & 1);
+        chords[end[ri + 1]] = {f[1], f[3], type};
+        end[ri + 1] += uint32_t(hit >> 1);
+      }
+      if (ri < e) {  // an odd one at the row's end
+        const double tc = (oc.x() * dx[ri] + oc.y() * dy[ri]) + oc.z() * dz[ri], b2 = oc2 - tc * tc;
         const double hw = std::sqrt(std::max(r2 - b2, 0.0));
-        const double t0 = std::max(tc - hw, r.t_in), t1 = std::min(tc + hw, r.t_out);
-        chords[end[ri]] = {float(t0 - r.t_in), float(t1 - r.t_in), type};
+        const double t0 = std::max(tc - hw, tin[ri]), t1 = std::min(tc + hw, tout[ri]);
+        chords[end[ri]] = {float(t0 - tin[ri]), float(t1 - tin[ri]), type};
         end[ri] += t1 > t0 ? 1u : 0u;
       }
     }
@@ -183,8 +217,7 @@ void tile_chords(const Pass& pass, Scratch& s) {
 size_t exact_screen_bins(const Pass& pass, Scratch& s, std::vector<RaySample>& out) {
   const TileRays& t = s.tile;
   reserve_chords(t, s);
-  if (t.spp == 1) tile_chords<true>(pass, s);
-  else tile_chords<false>(pass, s);
+  tile_chords(pass, s);
   size_t found = 0;
   for (size_t i = 0; i < t.rays.size(); ++i) {
     Interval* l = s.chords.data() + s.ray_start[i];
