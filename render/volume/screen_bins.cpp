@@ -105,10 +105,12 @@ ScreenBins::ScreenBins(const DiffuseFrame& frame, const std::array<float, kDiffu
   const size_t chunks = std::clamp<size_t>(n / 16384, 1, 64);
   auto chunk_begin = [&](size_t c) { return c * n / chunks; };
 
-  struct Rect {
-    uint16_t x0, y0, x1, y1;
+  // Both passes project each batch of spheres (pixel_rects is cheap once vectorised): storing
+  // the rectangles between them cost more, in page faults and memory traffic, than recomputing.
+  auto project = [&](size_t b, size_t m, float* r, SphereProjector::Rects& q) {
+    for (size_t j = 0; j < m; ++j) r[j] = radius[size_t(frame.types[b + j])];
+    projector.pixel_rects(frame.positions.data() + b, r, m, q);
   };
-  HugeBuffer<Rect> rect(n);
   std::vector<uint32_t> count(chunks * bins, 0);  // per chunk, per bin
   parallel_for(chunks, 1, [&](size_t c0, size_t c1) {
     for (size_t c = c0; c < c1; ++c) {
@@ -117,15 +119,10 @@ ScreenBins::ScreenBins(const DiffuseFrame& frame, const std::array<float, kDiffu
       float r[SphereProjector::kBatch];
       for (size_t b = chunk_begin(c), e = chunk_begin(c + 1); b < e; b += SphereProjector::kBatch) {
         const size_t m = std::min(SphereProjector::kBatch, e - b);
-        for (size_t j = 0; j < m; ++j) r[j] = radius[size_t(frame.types[b + j])];
-        projector.pixel_rects(frame.positions.data() + b, r, m, q);
+        project(b, m, r, q);
         for (size_t j = 0; j < m; ++j) {
           const int x0 = q.x0[j], y0 = q.y0[j], x1 = q.x1[j], y1 = q.y1[j];
-          if (x0 > x1) {
-            rect[b + j] = {1, 0, 0, 0};  // empty: x0 > x1
-            continue;
-          }
-          rect[b + j] = {uint16_t(x0), uint16_t(y0), uint16_t(x1), uint16_t(y1)};
+          if (x0 > x1) continue;  // not drawn or not seen
           for (int by = y0 / kBin; by <= y1 / kBin; ++by)
             for (int bx = x0 / kBin; bx <= x1 / kBin; ++bx) ++cnt[size_t(by) * size_t(bins_x_) + size_t(bx)];
         }
@@ -150,19 +147,25 @@ ScreenBins::ScreenBins(const DiffuseFrame& frame, const std::array<float, kDiffu
   parallel_for(chunks, 1, [&](size_t c0, size_t c1) {
     for (size_t c = c0; c < c1; ++c) {
       uint32_t* cursor = count.data() + c * bins;
-      for (size_t i = chunk_begin(c); i < chunk_begin(c + 1); ++i) {
-        const Rect& q = rect[i];
-        if (q.x0 > q.x1) continue;
-        const Vec3f& p = frame.positions[i];
-        const uint32_t type = uint32_t(frame.types[i]);
-        for (int by = q.y0 / kBin; by <= q.y1 / kBin; ++by)
-          for (int bx = q.x0 / kBin; bx <= q.x1 / kBin; ++bx) {
-            const int ox = bx * kBin, oy = by * kBin;
-            const uint32_t lx0 = uint32_t(std::max<int>(q.x0, ox) - ox), lx1 = uint32_t(std::min<int>(q.x1, ox + kBin - 1) - ox);
-            const uint32_t ly0 = uint32_t(std::max<int>(q.y0, oy) - oy), ly1 = uint32_t(std::min<int>(q.y1, oy + kBin - 1) - oy);
-            const size_t b = size_t(by) * size_t(bins_x_) + size_t(bx);
-            entries_[bin_start_[b] + cursor[b]++] = BinnedSphere::make(p, lx0, lx1, ly0, ly1, type);
-          }
+      SphereProjector::Rects q;
+      float r[SphereProjector::kBatch];
+      for (size_t b = chunk_begin(c), e = chunk_begin(c + 1); b < e; b += SphereProjector::kBatch) {
+        const size_t m = std::min(SphereProjector::kBatch, e - b);
+        project(b, m, r, q);
+        for (size_t j = 0; j < m; ++j) {
+          const int x0 = q.x0[j], y0 = q.y0[j], x1 = q.x1[j], y1 = q.y1[j];
+          if (x0 > x1) continue;
+          const Vec3f& p = frame.positions[b + j];
+          const uint32_t type = uint32_t(frame.types[b + j]);
+          for (int by = y0 / kBin; by <= y1 / kBin; ++by)
+            for (int bx = x0 / kBin; bx <= x1 / kBin; ++bx) {
+              const int ox = bx * kBin, oy = by * kBin;
+              const uint32_t lx0 = uint32_t(std::max(x0, ox) - ox), lx1 = uint32_t(std::min(x1, ox + kBin - 1) - ox);
+              const uint32_t ly0 = uint32_t(std::max(y0, oy) - oy), ly1 = uint32_t(std::min(y1, oy + kBin - 1) - oy);
+              const size_t k = size_t(by) * size_t(bins_x_) + size_t(bx);
+              entries_[bin_start_[k] + cursor[k]++] = BinnedSphere::make(p, lx0, lx1, ly0, ly1, type);
+            }
+        }
       }
     }
   });
