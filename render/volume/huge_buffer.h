@@ -22,29 +22,35 @@ class HugeBuffer {
   HugeBuffer() = default;
   explicit HugeBuffer(size_t n) { allocate(n); }
   ~HugeBuffer() { std::free(data_); }
-  HugeBuffer(HugeBuffer&& o) noexcept : data_(std::exchange(o.data_, nullptr)), size_(std::exchange(o.size_, 0)) {}
+  HugeBuffer(HugeBuffer&& o) noexcept
+      : data_(std::exchange(o.data_, nullptr)), size_(std::exchange(o.size_, 0)), capacity_(std::exchange(o.capacity_, 0)) {}
   HugeBuffer& operator=(HugeBuffer&& o) noexcept {
-    std::swap(data_, o.data_), std::swap(size_, o.size_);
+    std::swap(data_, o.data_), std::swap(size_, o.size_), std::swap(capacity_, o.capacity_);
     return *this;
   }
   HugeBuffer(const HugeBuffer&) = delete;
   HugeBuffer& operator=(const HugeBuffer&) = delete;
 
-  // Discards the contents; elements are left uninitialised.
+  // Discards the contents; elements are left uninitialised. Keeps the memory when it is large
+  // enough: pages already touched cost no fault and no zeroing by the kernel.
   void allocate(size_t n) {
+    size_ = n;
+    if (n <= capacity_) return;
     std::free(data_);
-    data_ = nullptr, size_ = n;
+    data_ = nullptr, capacity_ = 0;
     if (n == 0) return;
     constexpr size_t kHuge = size_t(2) << 20;
     const size_t bytes = n * sizeof(T);
     const size_t align = bytes >= kHuge ? kHuge : alignof(std::max_align_t);
     data_ = static_cast<T*>(std::aligned_alloc(align, (bytes + align - 1) / align * align));
-    if (!data_) throw std::bad_alloc();
+    if (!data_) size_ = 0, throw std::bad_alloc();
+    capacity_ = n;
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
     if (align == kHuge) madvise(data_, (bytes + align - 1) / align * align, MADV_HUGEPAGE);  // a hint; failure is harmless
 #endif
   }
 
+  size_t capacity() const { return capacity_; }
   T* data() { return data_; }
   const T* data() const { return data_; }
   size_t size() const { return size_; }
@@ -53,7 +59,7 @@ class HugeBuffer {
 
  private:
   T* data_ = nullptr;
-  size_t size_ = 0;
+  size_t size_ = 0, capacity_ = 0;
 };
 
 }  // namespace spume

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <numbers>
 
 #include "sim/core/error.h"
@@ -95,6 +96,22 @@ void SphereProjector::pixel_rects(const Vec3f* centres, const float* radii, size
   }
 }
 
+namespace {
+// The last freed entry array (see the constructor's comment in the header).
+std::mutex spare_mutex;
+HugeBuffer<BinnedSphere> spare_entries;
+}  // namespace
+
+ScreenBins::~ScreenBins() {
+  const std::lock_guard<std::mutex> lock(spare_mutex);
+  if (entries_.capacity() > spare_entries.capacity()) std::swap(entries_, spare_entries);
+}
+
+void ScreenBins::release_spare() {
+  const std::lock_guard<std::mutex> lock(spare_mutex);
+  spare_entries = HugeBuffer<BinnedSphere>();
+}
+
 ScreenBins::ScreenBins(const DiffuseFrame& frame, const std::array<float, kDiffuseTypeCount>& radius,
                        const SphereProjector& projector, int width, int height) {
   if (width <= 0 || height <= 0 || width > 65535 || height > 65535)
@@ -142,6 +159,10 @@ ScreenBins::ScreenBins(const DiffuseFrame& frame, const std::array<float, kDiffu
     }
   }
   bin_start_[bins] = total;
+  {
+    const std::lock_guard<std::mutex> lock(spare_mutex);
+    std::swap(entries_, spare_entries);
+  }
   entries_.allocate(total);
 
   parallel_for(chunks, 1, [&](size_t c0, size_t c1) {
