@@ -107,11 +107,6 @@ ScreenBins::~ScreenBins() {
   if (entries_.capacity() > spare_entries.capacity()) std::swap(entries_, spare_entries);
 }
 
-void ScreenBins::release_spare() {
-  const std::lock_guard<std::mutex> lock(spare_mutex);
-  spare_entries = HugeBuffer<BinnedSphere>();
-}
-
 ScreenBins::ScreenBins(const DiffuseFrame& frame, const std::array<float, kDiffuseTypeCount>& radius,
                        const SphereProjector& projector, int width, int height) {
   if (width <= 0 || height <= 0 || width > 65535 || height > 65535)

@@ -78,8 +78,6 @@ class ScreenBins {
   ~ScreenBins();
   ScreenBins(const ScreenBins&) = delete;
   ScreenBins& operator=(const ScreenBins&) = delete;
-  // Frees the kept entry array (memory held between frames), e.g. when no more frames follow.
-  static void release_spare();
 
   int bins_x() const { return bins_x_; }
   int bins_y() const { return bins_y_; }
