@@ -1,5 +1,6 @@
 #include "render/volume/absorption.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 
@@ -55,19 +56,30 @@ double sweep_union(const Interval* iv, size_t n, int type, OnComponent&& on_comp
 }
 
 // sweep_union(iv, n, -1, no-op) without a branch per chord, for the common ray: no water, one
-// type. The same double operations in the same order, as SSE2 masks and selects (GCC turned plain
-// ternaries back into the branch, which mispredicted at every gap between components): adding
-// +0.0 leaves the total unchanged, and std::max(e, t1) is _mm_max_sd(t1, e). So the same bits.
+// type (the branch mispredicted at every gap between components). The same sums in the same
+// order, so the same bits: a component's length e - s is recorded when the next chord starts a
+// new one (a slot written every chord, kept when gap), and the lengths are added in order after
+// each block of chords, so the running total is not a dependency of every chord. The end e is
+// max(e, t1) at every chord: when a new component starts, t1 >= t0 > e, so that is t1.
+// std::max(e, t1) is _mm_max_sd(t1, e).
 double union_length_all(const Interval* iv, size_t n) {
-  __m128d total = _mm_setzero_pd(), s = _mm_set_sd(iv[0].t0), e = _mm_set_sd(iv[0].t1);
-  for (size_t i = 1; i < n; ++i) {
-    const __m128d t0 = _mm_set_sd(iv[i].t0), t1 = _mm_set_sd(iv[i].t1);
-    const __m128d gap = _mm_cmpgt_sd(t0, e);
-    total = _mm_add_sd(total, _mm_and_pd(gap, _mm_sub_sd(e, s)));
-    s = _mm_or_pd(_mm_and_pd(gap, t0), _mm_andnot_pd(gap, s));
-    e = _mm_or_pd(_mm_and_pd(gap, t1), _mm_andnot_pd(gap, _mm_max_sd(t1, e)));
+  constexpr size_t kBlock = 64;
+  double length[kBlock];
+  double total = 0.0;
+  __m128d s = _mm_set_sd(iv[0].t0), e = _mm_set_sd(iv[0].t1);
+  for (size_t b = 1; b < n; b += kBlock) {
+    size_t k = 0;
+    for (size_t i = b, end = std::min(n, b + kBlock); i < end; ++i) {
+      const __m128d t0 = _mm_set_sd(iv[i].t0), t1 = _mm_set_sd(iv[i].t1);
+      const __m128d gap = _mm_cmpgt_sd(t0, e);
+      length[k] = _mm_cvtsd_f64(_mm_sub_sd(e, s));
+      k += size_t(_mm_movemask_pd(gap) & 1);
+      s = _mm_or_pd(_mm_and_pd(gap, t0), _mm_andnot_pd(gap, s));
+      e = _mm_max_sd(t1, e);
+    }
+    for (size_t j = 0; j < k; ++j) total += length[j];
   }
-  return _mm_cvtsd_f64(_mm_add_sd(total, _mm_sub_sd(e, s)));
+  return total + _mm_cvtsd_f64(_mm_sub_sd(e, s));
 }
 }  // namespace
 
