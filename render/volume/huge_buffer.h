@@ -1,7 +1,9 @@
 #pragma once
-// Large per-frame arrays (screen bins: ~16 B x 1.4 N) without a zero-fill pass and, on Linux,
+// Large per-frame arrays (screen bins: 16 B x 1.2 N) without a zero-fill pass and, on Linux,
 // backed by transparent huge pages (the kernel here runs THP in madvise mode): a 500 MB array
-// otherwise costs ~125k page faults, a measurable share of a 15M-sphere frame.
+// otherwise costs ~125k page faults, a measurable share of a 15M-sphere frame. Not named
+// HugeBuffer: sim/io/huge_buffer.h has a different spume::HugeBuffer, and two class templates of
+// one name in one program break the one-definition rule (the linker would merge same-T members).
 #include <cstddef>
 #include <cstdlib>
 #include <new>
@@ -15,21 +17,21 @@
 namespace spume {
 
 template <typename T>
-class HugeBuffer {
+class HugePageArray {
   static_assert(std::is_trivially_copyable_v<T> && std::is_trivially_destructible_v<T>);
 
  public:
-  HugeBuffer() = default;
-  explicit HugeBuffer(size_t n) { allocate(n); }
-  ~HugeBuffer() { std::free(data_); }
-  HugeBuffer(HugeBuffer&& o) noexcept
+  HugePageArray() = default;
+  explicit HugePageArray(size_t n) { allocate(n); }
+  ~HugePageArray() { std::free(data_); }
+  HugePageArray(HugePageArray&& o) noexcept
       : data_(std::exchange(o.data_, nullptr)), size_(std::exchange(o.size_, 0)), capacity_(std::exchange(o.capacity_, 0)) {}
-  HugeBuffer& operator=(HugeBuffer&& o) noexcept {
+  HugePageArray& operator=(HugePageArray&& o) noexcept {
     std::swap(data_, o.data_), std::swap(size_, o.size_), std::swap(capacity_, o.capacity_);
     return *this;
   }
-  HugeBuffer(const HugeBuffer&) = delete;
-  HugeBuffer& operator=(const HugeBuffer&) = delete;
+  HugePageArray(const HugePageArray&) = delete;
+  HugePageArray& operator=(const HugePageArray&) = delete;
 
   // Discards the contents; elements are left uninitialised. Keeps the memory when it is large
   // enough: pages already touched cost no fault and no zeroing by the kernel.

@@ -99,7 +99,7 @@ void SphereProjector::pixel_rects(const Vec3f* centres, const float* radii, size
 namespace {
 // The last freed entry array (see the constructor's comment in the header).
 std::mutex spare_mutex;
-HugeBuffer<BinnedSphere> spare_entries;
+HugePageArray<BinnedSphere> spare_entries;
 }  // namespace
 
 ScreenBins::~ScreenBins() {

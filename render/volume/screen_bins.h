@@ -89,7 +89,7 @@ class ScreenBins {
  private:
   int bins_x_, bins_y_;
   std::vector<size_t> bin_start_;  // bins + 1 offsets into entries_
-  HugeBuffer<BinnedSphere> entries_;
+  HugePageArray<BinnedSphere> entries_;
 };
 
 }  // namespace spume
