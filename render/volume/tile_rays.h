@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "render/camera/camera.h"
+#include "render/volume/absorption.h"
 #include "render/volume/water_path.h"
 
 namespace spume {
@@ -61,5 +62,10 @@ struct TileRayParams {
 };
 
 void make_tile_rays(const TileRayParams& p, int x0, int y0, int w, int h, TileRays& out);
+
+// The water stretches of ray r of t.
+inline WaterView water_of(const TileRays& t, const TileRay& r) {
+  return {t.water.data() + r.water_begin, size_t(r.water_end - r.water_begin)};
+}
 
 }  // namespace spume
