@@ -38,30 +38,30 @@ void order_bin(const BinnedSphere* b, const BinnedSphere* e, const Camera& cam, 
   for (size_t i = 0; i < buckets; ++i) s.bucket[i + 1] += s.bucket[i];
   s.bin_sorted.resize(n);
   for (size_t i = 0; i < n; ++i) s.bin_sorted[s.bucket[s.bucket_of[i]]++] = b[i];
+  // Then into the lists of the 2x2 tiles each touches, in the same order, with the rectangles
+  // clipped to the tile and made relative to it. (Rectangles lie inside the image, so a sphere
+  // never reaches a tile past its edge.)
+  for (auto& l : s.tiles) l.clear();
+  for (const BinnedSphere& sp : s.bin_sorted) {
+    const int x0 = sp.x0(), x1 = sp.x1(), y0 = sp.y0(), y1 = sp.y1();
+    for (int ty = y0 / kTile; ty <= y1 / kTile; ++ty)
+      for (int tx = x0 / kTile; tx <= x1 / kTile; ++tx) {
+        const int ox = tx * kTile, oy = ty * kTile;
+        const uint32_t lx0 = uint32_t(std::max(x0, ox) - ox), lx1 = uint32_t(std::min(x1, ox + kTile - 1) - ox);
+        const uint32_t ly0 = uint32_t(std::max(y0, oy) - oy), ly1 = uint32_t(std::min(y1, oy + kTile - 1) - oy);
+        s.tiles[size_t(ty * 2 + tx)].push_back(BinnedSphere::make(sp.centre(), lx0, lx1, ly0, ly1, sp.type()));
+      }
+  }
 }
 
 namespace {
 
-// The bin's spheres seen in the tile at (ox, oy) of the bin, w x h pixels, in the same order, with
-// their rectangles clipped to the tile and made relative to it.
-void tile_spheres(BinScratch& s, int ox, int oy, int w, int h) {
-  s.sorted.resize(s.bin_sorted.size());
-  size_t k = 0;
-  for (const BinnedSphere& sp : s.bin_sorted) {
-    const int x0 = std::max(sp.x0(), ox), x1 = std::min(sp.x1(), ox + w - 1);
-    const int y0 = std::max(sp.y0(), oy), y1 = std::min(sp.y1(), oy + h - 1);
-    s.sorted[k] = BinnedSphere::make(sp.centre(), uint32_t(x0 - ox), uint32_t(x1 - ox), uint32_t(y0 - oy), uint32_t(y1 - oy), sp.type());
-    k += x0 <= x1 && y0 <= y1 ? 1 : 0;
-  }
-  s.sorted.resize(k);
-}
-
 // Per ray of the tile, room for one chord per candidate sphere: the rectangles summed by a 2D
 // difference array, so the chord loop below stores without a size check and without a branch.
-void reserve_chords(const TileRays& t, BinScratch& s) {
+void reserve_chords(const TileRays& t, const std::vector<BinnedSphere>& spheres, BinScratch& s) {
   const size_t w = size_t(t.w), h = size_t(t.h), spp = size_t(t.spp);
   std::array<uint32_t, (kTile + 1) * (kTile + 1)> diff{};
-  for (const BinnedSphere& sp : s.sorted) {
+  for (const BinnedSphere& sp : spheres) {
     const size_t x0 = size_t(sp.x0()), x1 = size_t(sp.x1()) + 1, y0 = size_t(sp.y0()), y1 = size_t(sp.y1()) + 1;
     ++diff[y0 * (kTile + 1) + x0], ++diff[y1 * (kTile + 1) + x1];
     --diff[y0 * (kTile + 1) + x1], --diff[y1 * (kTile + 1) + x0];
@@ -98,20 +98,21 @@ void ray_columns(const TileRays& t, BinScratch& s) {
   }
 }
 
-// Every candidate chord of the tile's spheres (s.sorted) into its ray's room (reserve_chords):
+// Every candidate chord of the tile's spheres into its ray's room (reserve_chords):
 // ray_sphere_chord and the clip to [t_in, t_out] for two rays at once (SSE2, part of x86-64),
 // without a branch: a miss (or a ray that misses the bounds, t_in > t_out) leaves t1 <= t0, and
 // the slot is reused by the ray's next chord. The same double operations in the same order as the
 // scalar code (Eigen's dot is (x + y) + z; std::max(a, b) is _mm_max_pd(b, a)), so the same bits.
 // The square root was the loop's bottleneck; two lanes halve its count.
-void tile_chords(const TileRays& t, const Vec3d& o, const std::array<double, kDiffuseTypeCount>& r2s, BinScratch& s) {
+void tile_chords(const TileRays& t, const std::vector<BinnedSphere>& spheres, const Vec3d& o, const std::array<double, kDiffuseTypeCount>& r2s,
+                 BinScratch& s) {
   const size_t n = t.rays.size(), spp = size_t(t.spp), w = size_t(t.w);
   ray_columns(t, s);
   const double *dx = s.ray_soa.data(), *dy = dx + n, *dz = dx + 2 * n, *tin = dx + 3 * n, *tout = dx + 4 * n;
   Interval* chords = s.chords.data();
   uint32_t* end = s.ray_end.data();
   const __m128d zero = _mm_setzero_pd();
-  for (const BinnedSphere& sp : s.sorted) {
+  for (const BinnedSphere& sp : spheres) {
     const Vec3d oc = sp.centre().cast<double>() - o;
     const double oc2 = oc.squaredNorm(), r2 = r2s[sp.type()];
     const uint32_t type = sp.type();
@@ -151,9 +152,9 @@ void tile_chords(const TileRays& t, const Vec3d& o, const std::array<double, kDi
 
 size_t trace_bin_tile(const TileRays& t, int ox, int oy, const Vec3d& origin, const std::array<double, kDiffuseTypeCount>& r2,
                       const VolumeShading& shading, BinScratch& s, std::vector<RaySample>& out) {
-  tile_spheres(s, ox, oy, t.w, t.h);
-  reserve_chords(t, s);
-  tile_chords(t, origin, r2, s);
+  const std::vector<BinnedSphere>& spheres = s.tiles[size_t((oy / kTile) * 2 + ox / kTile)];
+  reserve_chords(t, spheres, s);
+  tile_chords(t, spheres, origin, r2, s);
   size_t found = 0;
   for (size_t i = 0; i < t.rays.size(); ++i) {
     Interval* l = s.chords.data() + s.ray_start[i];

@@ -15,7 +15,7 @@ namespace spume {
 
 struct BinScratch {
   std::vector<BinnedSphere> bin_sorted;      // the bin's spheres, near to far
-  std::vector<BinnedSphere> sorted;          // those of the current tile, rectangles tile-relative
+  std::array<std::vector<BinnedSphere>, 4> tiles;  // those of each 16x16 tile (row-major), tile-relative
   std::vector<float> depth;
   std::vector<uint32_t> bucket, bucket_of;
   std::vector<uint32_t> ray_start, ray_end;  // per ray of the tile: its chords in `chords`
@@ -23,7 +23,7 @@ struct BinScratch {
   std::vector<double> ray_soa;               // the tile's rays as columns of doubles
 };
 
-// The bin [b, e) near to far into s.bin_sorted.
+// The bin [b, e) near to far, split into the lists of its 2x2 tiles (s.tiles).
 void order_bin(const BinnedSphere* b, const BinnedSphere* e, const Camera& cam, BinScratch& s);
 
 // Transmittance and colour of the tile's rays `t`, the tile at (ox, oy) pixels inside the bin last
