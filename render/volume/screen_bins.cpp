@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <numbers>
 
 #include "sim/core/error.h"
@@ -61,68 +62,126 @@ bool SphereProjector::pixel_rect(const Vec3f& centre, float radius, int& x0, int
   return true;
 }
 
+void SphereProjector::pixel_rects(const Vec3f* centres, const float* radii, size_t n, Rects& out) const {
+  // pixel_rect's expressions in its order, as selects instead of early returns.
+  const float ox = origin_.x(), oy = origin_.y(), oz = origin_.z();
+  const float cx = 0.5f * float(width_), cy = 0.5f * float(height_), w = float(width_), h = float(height_);
+  float px[kBatch], py[kBatch], pz[kBatch];
+  for (size_t i = 0; i < n; ++i) px[i] = centres[i].x(), py[i] = centres[i].y(), pz[i] = centres[i].z();
+  for (size_t i = 0; i < n; ++i) {
+    const float vx = px[i] - ox, vy = py[i] - oy, vz = pz[i] - oz;
+    const float X = vx * right_.x() + vy * right_.y() + vz * right_.z();
+    const float Y = vx * up_.x() + vy * up_.y() + vz * up_.z();
+    const float Z = vx * forward_.x() + vy * forward_.y() + vz * forward_.z();
+    const float radius = radii[i];
+    const float aX = std::abs(X), aY = std::abs(Y);
+    const float r = radius * (1.0f + 1e-5f) + 1e-6f * (aX + aY + std::abs(Z));
+    const bool seen = (radius > 0.0f) & !(Z < -r) & !((aX - tan_x_ * Z) * cull_x_ > r) & !((aY - tan_y_ * Z) * cull_y_ > r);
+    const bool whole = Z <= r;
+    const float den = Z * Z - r * r, inv = 1.0f / den;
+    const float rx = r * std::sqrt(std::max(X * X + den, 0.0f)), ry = r * std::sqrt(std::max(Y * Y + den, 0.0f));
+    const float px_lo = cx + scale_x_ * (X * Z - rx) * inv, px_hi = cx + scale_x_ * (X * Z + rx) * inv;
+    const float py_lo = cy - scale_y_ * (Y * Z + ry) * inv, py_hi = cy - scale_y_ * (Y * Z - ry) * inv;
+    const float ax0 = std::min(std::max(px_lo - lo_margin_, -2.0f), w + 2.0f), ax1 = std::min(std::max(px_hi + hi_margin_, -2.0f), w + 2.0f);
+    const float ay0 = std::min(std::max(py_lo - lo_margin_, -2.0f), h + 2.0f), ay1 = std::min(std::max(py_hi + hi_margin_, -2.0f), h + 2.0f);
+    const bool ordered = (ax0 <= ax1) & (ay0 <= ay1);
+    const int ix0 = int(ax0), ix1 = int(ax1), iy0 = int(ay0), iy1 = int(ay1);
+    const int x0 = std::max(ix0 + (ax0 > float(ix0) ? 1 : 0), 0), x1 = std::min(ix1 - (ax1 < float(ix1) ? 1 : 0), width_ - 1);
+    const int y0 = std::max(iy0 + (ay0 > float(iy0) ? 1 : 0), 0), y1 = std::min(iy1 - (ay1 < float(iy1) ? 1 : 0), height_ - 1);
+    const bool ok = seen & (whole | (ordered & (x0 <= x1) & (y0 <= y1)));
+    out.x0[i] = !ok ? 1 : whole ? 0 : x0;
+    out.x1[i] = !ok ? 0 : whole ? width_ - 1 : x1;
+    out.y0[i] = !ok ? 0 : whole ? 0 : y0;
+    out.y1[i] = !ok ? 0 : whole ? height_ - 1 : y1;
+  }
+}
+
+namespace {
+// The last freed entry array (see the constructor's comment in the header).
+std::mutex spare_mutex;
+HugePageArray<BinnedSphere> spare_entries;
+}  // namespace
+
+ScreenBins::~ScreenBins() {
+  const std::lock_guard<std::mutex> lock(spare_mutex);
+  if (entries_.capacity() > spare_entries.capacity()) std::swap(entries_, spare_entries);
+}
+
 ScreenBins::ScreenBins(const DiffuseFrame& frame, const std::array<float, kDiffuseTypeCount>& radius,
                        const SphereProjector& projector, int width, int height) {
   if (width <= 0 || height <= 0 || width > 65535 || height > 65535)
     fail("volume pass: image size ", width, "x", height, " outside 1..65535");
-  tiles_x_ = (width + kTile - 1) / kTile, tiles_y_ = (height + kTile - 1) / kTile;
-  const size_t tiles = size_t(tiles_x_) * size_t(tiles_y_), n = frame.size();
-  // Chunking depends on n only, so every tile list comes out in particle order for any thread count.
+  bins_x_ = (width + kBin - 1) / kBin, bins_y_ = (height + kBin - 1) / kBin;
+  const size_t bins = size_t(bins_x_) * size_t(bins_y_), n = frame.size();
+  // Chunking depends on n only, so every bin list comes out in particle order for any thread count.
   const size_t chunks = std::clamp<size_t>(n / 16384, 1, 64);
   auto chunk_begin = [&](size_t c) { return c * n / chunks; };
 
-  struct Rect {
-    uint16_t x0, y0, x1, y1;
+  // Both passes project each batch of spheres (pixel_rects is cheap once vectorised): storing
+  // the rectangles between them cost more, in page faults and memory traffic, than recomputing.
+  auto project = [&](size_t b, size_t m, float* r, SphereProjector::Rects& q) {
+    for (size_t j = 0; j < m; ++j) r[j] = radius[size_t(frame.types[b + j])];
+    projector.pixel_rects(frame.positions.data() + b, r, m, q);
   };
-  HugeBuffer<Rect> rect(n);
-  std::vector<uint32_t> count(chunks * tiles, 0);  // per chunk, per tile
+  std::vector<uint32_t> count(chunks * bins, 0);  // per chunk, per bin
   parallel_for(chunks, 1, [&](size_t c0, size_t c1) {
     for (size_t c = c0; c < c1; ++c) {
-      uint32_t* cnt = count.data() + c * tiles;
-      for (size_t i = chunk_begin(c); i < chunk_begin(c + 1); ++i) {
-        const float r = radius[size_t(frame.types[i])];
-        int x0, y0, x1, y1;
-        if (!(r > 0.0f) || !projector.pixel_rect(frame.positions[i], r, x0, y0, x1, y1)) {
-          rect[i] = {1, 0, 0, 0};  // empty: x0 > x1
-          continue;
+      uint32_t* cnt = count.data() + c * bins;
+      SphereProjector::Rects q;
+      float r[SphereProjector::kBatch];
+      for (size_t b = chunk_begin(c), e = chunk_begin(c + 1); b < e; b += SphereProjector::kBatch) {
+        const size_t m = std::min(SphereProjector::kBatch, e - b);
+        project(b, m, r, q);
+        for (size_t j = 0; j < m; ++j) {
+          const int x0 = q.x0[j], y0 = q.y0[j], x1 = q.x1[j], y1 = q.y1[j];
+          if (x0 > x1) continue;  // not drawn or not seen
+          for (int by = y0 / kBin; by <= y1 / kBin; ++by)
+            for (int bx = x0 / kBin; bx <= x1 / kBin; ++bx) ++cnt[size_t(by) * size_t(bins_x_) + size_t(bx)];
         }
-        rect[i] = {uint16_t(x0), uint16_t(y0), uint16_t(x1), uint16_t(y1)};
-        for (int ty = y0 / kTile; ty <= y1 / kTile; ++ty)
-          for (int tx = x0 / kTile; tx <= x1 / kTile; ++tx) ++cnt[size_t(ty) * size_t(tiles_x_) + size_t(tx)];
       }
     }
   });
 
-  // Offsets: tile-major, then chunk; `count` becomes each (chunk, tile)'s write cursor.
-  tile_start_.assign(tiles + 1, 0);
+  // Offsets: bin-major, then chunk; `count` becomes each (chunk, bin)'s write cursor.
+  bin_start_.assign(bins + 1, 0);
   size_t total = 0;
-  for (size_t t = 0; t < tiles; ++t) {
-    tile_start_[t] = total;
+  for (size_t b = 0; b < bins; ++b) {
+    bin_start_[b] = total;
     for (size_t c = 0; c < chunks; ++c) {
-      const size_t k = count[c * tiles + t];
-      count[c * tiles + t] = uint32_t(total - tile_start_[t]);
+      const size_t k = count[c * bins + b];
+      count[c * bins + b] = uint32_t(total - bin_start_[b]);
       total += k;
     }
   }
-  tile_start_[tiles] = total;
+  bin_start_[bins] = total;
+  {
+    const std::lock_guard<std::mutex> lock(spare_mutex);
+    std::swap(entries_, spare_entries);
+  }
   entries_.allocate(total);
 
   parallel_for(chunks, 1, [&](size_t c0, size_t c1) {
     for (size_t c = c0; c < c1; ++c) {
-      uint32_t* cursor = count.data() + c * tiles;
-      for (size_t i = chunk_begin(c); i < chunk_begin(c + 1); ++i) {
-        const Rect& q = rect[i];
-        if (q.x0 > q.x1) continue;
-        const Vec3f& p = frame.positions[i];
-        const uint32_t type = uint32_t(frame.types[i]) << 16;
-        for (int ty = q.y0 / kTile; ty <= q.y1 / kTile; ++ty)
-          for (int tx = q.x0 / kTile; tx <= q.x1 / kTile; ++tx) {
-            const int bx = tx * kTile, by = ty * kTile;
-            const uint32_t lx0 = uint32_t(std::max<int>(q.x0, bx) - bx), lx1 = uint32_t(std::min<int>(q.x1, bx + kTile - 1) - bx);
-            const uint32_t ly0 = uint32_t(std::max<int>(q.y0, by) - by), ly1 = uint32_t(std::min<int>(q.y1, by + kTile - 1) - by);
-            const size_t t = size_t(ty) * size_t(tiles_x_) + size_t(tx);
-            entries_[tile_start_[t] + cursor[t]++] = {p.x(), p.y(), p.z(), lx0 | (lx1 << 4) | (ly0 << 8) | (ly1 << 12) | type};
-          }
+      uint32_t* cursor = count.data() + c * bins;
+      SphereProjector::Rects q;
+      float r[SphereProjector::kBatch];
+      for (size_t b = chunk_begin(c), e = chunk_begin(c + 1); b < e; b += SphereProjector::kBatch) {
+        const size_t m = std::min(SphereProjector::kBatch, e - b);
+        project(b, m, r, q);
+        for (size_t j = 0; j < m; ++j) {
+          const int x0 = q.x0[j], y0 = q.y0[j], x1 = q.x1[j], y1 = q.y1[j];
+          if (x0 > x1) continue;
+          const Vec3f& p = frame.positions[b + j];
+          const uint32_t type = uint32_t(frame.types[b + j]);
+          for (int by = y0 / kBin; by <= y1 / kBin; ++by)
+            for (int bx = x0 / kBin; bx <= x1 / kBin; ++bx) {
+              const int ox = bx * kBin, oy = by * kBin;
+              const uint32_t lx0 = uint32_t(std::max(x0, ox) - ox), lx1 = uint32_t(std::min(x1, ox + kBin - 1) - ox);
+              const uint32_t ly0 = uint32_t(std::max(y0, oy) - oy), ly1 = uint32_t(std::min(y1, oy + kBin - 1) - oy);
+              const size_t k = size_t(by) * size_t(bins_x_) + size_t(bx);
+              entries_[bin_start_[k] + cursor[k]++] = BinnedSphere::make(p, lx0, lx1, ly0, ly1, type);
+            }
+        }
       }
     }
   });

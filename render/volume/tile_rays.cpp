@@ -1,6 +1,8 @@
 #include "render/volume/tile_rays.h"
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 
 #include "sim/core/rng.h"
 #include "render/volume/embree_scene.h"
@@ -20,6 +22,12 @@ void sample_offset(uint64_t seed, int frame, uint64_t pixel, uint32_t sample, in
   v = to_unit_float(bits[1]);
 }
 
+EyeRayDirections::EyeRayDirections(const Camera& camera) : width_(camera.width), height_(camera.height) {
+  camera.basis(right_, true_up_, back_);
+  tan_half_ = std::tan(0.5f * camera.fov_y_degrees * std::numbers::pi_v<float> / 180.0f);
+  aspect_ = float(camera.width) / float(camera.height);
+}
+
 void make_tile_rays(const TileRayParams& p, int x0, int y0, int w, int h, TileRays& out) {
   const Camera& cam = *p.camera;
   const int spp = p.samples_per_pixel;
@@ -27,6 +35,7 @@ void make_tile_rays(const TileRayParams& p, int x0, int y0, int w, int h, TileRa
   out.rays.resize(size_t(w) * size_t(h) * size_t(spp));
   out.water.clear();
   const Vec3d origin = cam.position.cast<double>();
+  const EyeRayDirections eye(cam);
   for (int ly = 0; ly < h; ++ly)
     for (int lx = 0; lx < w; ++lx)
       for (int s = 0; s < spp; ++s) {
@@ -34,7 +43,7 @@ void make_tile_rays(const TileRayParams& p, int x0, int y0, int w, int h, TileRa
         const uint64_t pixel = uint64_t(y0 + ly) * uint64_t(cam.width) + uint64_t(x0 + lx);
         float u, v;
         sample_offset(p.seed, p.frame, pixel, uint32_t(s), spp, u, v);
-        const Ray ray = cam.ray(float(x0 + lx) + u, float(y0 + ly) + v);
+        const Ray ray{cam.position, eye(float(x0 + lx) + u, float(y0 + ly) + v)};
         r.direction_f = ray.direction;
         r.direction = unit_double(ray.direction);
         r.water_begin = r.water_end = uint32_t(out.water.size());

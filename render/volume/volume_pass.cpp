@@ -1,6 +1,7 @@
 #include "render/volume/volume_pass.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <memory>
@@ -10,6 +11,7 @@
 
 #include "render/keys/render_keys.h"
 #include "render/volume/absorption.h"
+#include "render/volume/bin_trace.h"
 #include "sim/core/error.h"
 #include "sim/core/parallel.h"
 #include "sim/core/stopwatch.h"
@@ -22,7 +24,7 @@
 namespace spume {
 namespace {
 
-constexpr int kTile = ScreenBins::kTile;
+constexpr int kTile = ScreenBins::kTile, kBin = ScreenBins::kBin;
 
 bool finite3(const Vec3f& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
 
@@ -59,71 +61,10 @@ struct Pass {
 
 struct Scratch {
   TileRays tile;
-  std::vector<std::vector<Interval>> lists;  // per ray of the tile
-  std::vector<BinnedSphere> sorted;
-  std::vector<uint32_t> bucket;
+  BinScratch bin;
   std::vector<SphereHitScene::Hit> hits;
   std::vector<Interval> intervals;
 };
-
-WaterView water_of(const TileRays& t, const TileRay& r) {
-  return {t.water.data() + r.water_begin, size_t(r.water_end - r.water_begin)};
-}
-
-// The tile's spheres in near-to-far order (buckets about a radius deep; particle order within), so
-// each ray's chords arrive almost sorted by entry and sort_intervals is about one pass.
-void depth_order(const BinnedSphere* b, const BinnedSphere* e, const Camera& cam, Scratch& s) {
-  const size_t n = size_t(e - b);
-  Vec3f right, up, back;
-  cam.basis(right, up, back);
-  float zmin = INFINITY, zmax = -INFINITY;
-  for (const BinnedSphere* p = b; p != e; ++p) {
-    const float z = -(p->centre() - cam.position).dot(back);
-    zmin = std::min(zmin, z), zmax = std::max(zmax, z);
-  }
-  const size_t buckets = std::clamp<size_t>(n, 1, 4096);
-  const float scale = zmax > zmin ? float(buckets) / (zmax - zmin) : 0.0f;
-  auto bucket_of = [&](const BinnedSphere& p) {
-    const float z = -(p.centre() - cam.position).dot(back);
-    return std::min(buckets - 1, size_t((z - zmin) * scale));
-  };
-  s.bucket.assign(buckets + 1, 0);
-  for (const BinnedSphere* p = b; p != e; ++p) ++s.bucket[bucket_of(*p) + 1];
-  for (size_t i = 0; i < buckets; ++i) s.bucket[i + 1] += s.bucket[i];
-  s.sorted.resize(n);
-  for (const BinnedSphere* p = b; p != e; ++p) s.sorted[s.bucket[bucket_of(*p)]++] = *p;
-}
-
-size_t exact_screen_bins(const Pass& pass, size_t tile, Scratch& s, std::vector<RaySample>& out) {
-  TileRays& t = s.tile;
-  const int spp = t.spp;
-  if (s.lists.size() < t.rays.size()) s.lists.resize(t.rays.size());
-  for (size_t i = 0; i < t.rays.size(); ++i) s.lists[i].clear();
-  depth_order(pass.bins->begin(tile), pass.bins->end(tile), *pass.camera, s);
-  const Vec3d o = pass.camera->position.cast<double>();
-  size_t found = 0;
-  for (const BinnedSphere& sp : s.sorted) {
-    const Vec3d oc = sp.centre().cast<double>() - o;
-    const double oc2 = oc.squaredNorm(), r2 = pass.r2[sp.type()];
-    for (int ly = sp.y0(); ly <= sp.y1() && ly < t.h; ++ly)
-      for (int lx = sp.x0(); lx <= sp.x1() && lx < t.w; ++lx)
-        for (int k = 0; k < spp; ++k) {
-          const size_t ri = (size_t(ly) * size_t(t.w) + size_t(lx)) * size_t(spp) + size_t(k);
-          const TileRay& r = t.rays[ri];
-          double t0, t1;
-          if (r.misses() || !ray_sphere_chord(oc, oc2, r.direction, r2, t0, t1)) continue;
-          t0 = std::max(t0, r.t_in), t1 = std::min(t1, r.t_out);
-          if (t1 > t0) s.lists[ri].push_back({float(t0 - r.t_in), float(t1 - r.t_in), sp.type()});
-        }
-  }
-  for (size_t i = 0; i < t.rays.size(); ++i) {
-    std::vector<Interval>& l = s.lists[i];
-    found += l.size();
-    sort_intervals(l.data(), l.size());
-    out[i] = absorb_intervals(l.data(), l.size(), pass.shading, water_of(t, t.rays[i]));
-  }
-  return found;
-}
 
 size_t exact_embree(const Pass& pass, Scratch& s, std::vector<RaySample>& out) {
   const TileRays& t = s.tile;
@@ -286,28 +227,38 @@ VolumeImage render_volume(const DiffuseFrame& frame, const Camera& camera, const
   st.build_seconds = build_start.seconds();
 
   const Stopwatch trace_start;
-  const int tiles_x = (camera.width + kTile - 1) / kTile, tiles_y = (camera.height + kTile - 1) / kTile;
+  // Bins of 2x2 tiles (ScreenBins::kBin), each tile's pixels written by one task only.
+  const int bins_x = (camera.width + kBin - 1) / kBin, bins_y = (camera.height + kBin - 1) / kBin;
   tbb::enumerable_thread_specific<Scratch> scratch;
   std::atomic<size_t> found{0};
-  parallel_for(size_t(tiles_x) * size_t(tiles_y), 1, [&](size_t b, size_t e) {
+  parallel_for(size_t(bins_x) * size_t(bins_y), 1, [&](size_t b, size_t e) {
     Scratch& s = scratch.local();
     std::vector<RaySample> samples;
-    for (size_t tile = b; tile < e; ++tile) {
-      const int x0 = int(tile % size_t(tiles_x)) * kTile, y0 = int(tile / size_t(tiles_x)) * kTile;
-      const int w = std::min(kTile, camera.width - x0), h = std::min(kTile, camera.height - y0);
-      make_tile_rays(pass.ray_params, x0, y0, w, h, s.tile);
-      samples.assign(s.tile.rays.size(), RaySample{});
-      size_t n = 0;
-      if (pass.grids) n = march(pass, s, samples);
-      else if (pass.bins) n = exact_screen_bins(pass, tile, s, samples);
-      else n = exact_embree(pass, s, samples);
-      found += n;
-      for (int ly = 0; ly < h; ++ly)
-        for (int lx = 0; lx < w; ++lx) {
-          PixelAverage avg;
-          for (int k = 0; k < spp; ++k) avg.add(samples[(size_t(ly) * size_t(w) + size_t(lx)) * size_t(spp) + size_t(k)]);
-          const size_t p = size_t(y0 + ly) * size_t(camera.width) + size_t(x0 + lx);
-          avg.finish(img.transmittance[p], img.color[p]);
+    for (size_t bin = b; bin < e; ++bin) {
+      const int bx = int(bin % size_t(bins_x)) * kBin, by = int(bin / size_t(bins_x)) * kBin;
+      if (pass.bins) order_bin(pass.bins->begin(bin), pass.bins->end(bin), *pass.camera, s.bin);
+      for (int oy = 0; oy < kBin && by + oy < camera.height; oy += kTile)
+        for (int ox = 0; ox < kBin && bx + ox < camera.width; ox += kTile) {
+          const int x0 = bx + ox, y0 = by + oy;
+          const int w = std::min(kTile, camera.width - x0), h = std::min(kTile, camera.height - y0);
+          make_tile_rays(pass.ray_params, x0, y0, w, h, s.tile);
+          samples.assign(s.tile.rays.size(), RaySample{});
+          size_t n = 0;
+          if (pass.grids) {
+            n = march(pass, s, samples);
+          } else if (pass.bins) {
+            n = trace_bin_tile(s.tile, ox, oy, pass.camera->position.cast<double>(), pass.r2, pass.shading, s.bin, samples);
+          } else {
+            n = exact_embree(pass, s, samples);
+          }
+          found += n;
+          for (int ly = 0; ly < h; ++ly)
+            for (int lx = 0; lx < w; ++lx) {
+              PixelAverage avg;
+              for (int k = 0; k < spp; ++k) avg.add(samples[(size_t(ly) * size_t(w) + size_t(lx)) * size_t(spp) + size_t(k)]);
+              const size_t p = size_t(y0 + ly) * size_t(camera.width) + size_t(x0 + lx);
+              avg.finish(img.transmittance[p], img.color[p]);
+            }
         }
     }
   });

@@ -13,7 +13,7 @@
 //          chord computed exactly in double and a sweep over chords sorted by entry. Candidate
 //          spheres come from screen-tile bins (screen_bins.h, default) or Embree's all-hits
 //          filter (embree_scene.h); same chords, the bins are ~10x faster at 1M-15M spheres.
-// Colours: absorption.h. Tiles of 16x16 pixels run in parallel, each pixel written by one task
+// Colours: absorption.h. Bins of 2x2 tiles of 16x16 pixels run in parallel, each pixel written by one task
 // and computed serially, so the image is the same bytes for any thread count.
 #include "render/camera/camera.h"
 #include "render/volume/volume_types.h"

@@ -24,7 +24,7 @@ enum class VolumeIntegrator : uint8_t {
 // give the same image up to float rounding of the interval ends; ScreenBins is 10-20x faster on
 // 1M-15M spheres (tests/bench/bench_volume.cpp) and needs no BVH.
 enum class ExactMethod : uint8_t {
-  ScreenBins,     // spheres binned by the 16x16 pixel tiles their projections touch
+  ScreenBins,     // spheres binned by the 32x32 pixel bins their projections touch
   EmbreeAllHits,  // Embree sphere points with a filter that records every hit and rejects it
 };
 

@@ -2,7 +2,10 @@
 // r = 0.35 N^(-1/3), 1920x1080, 1 sample per pixel, camera 1.2 m from the cube's centre (about
 // 97% of the rays cross the box). Reports ms per frame with the build (bins / Embree BVH / grids)
 // and the trace separated, Mrays/s and chords per ray. Medians over repetitions:
-//   build-vol/bench/bench_volume --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+//   build/bench/bench_volume --benchmark_filter='mode:0' --benchmark_repetitions=3
+// The screen bins keep their entry array for the next call (as for the next frame of a render), so
+// a process's first repetition also pays for faulting in fresh pages (at 15M about 290 MB); it is
+// printed first, before the aggregates.
 #include <benchmark/benchmark.h>
 
 #include <sys/resource.h>
