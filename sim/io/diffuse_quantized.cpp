@@ -1,7 +1,9 @@
 #include "sim/io/diffuse_quantized.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <numeric>
 
 #include "sim/core/error.h"
 #include "sim/core/parallel.h"
@@ -13,7 +15,16 @@ constexpr double kMaxSteps = 2147483647.0;  // 2^31 - 1 steps along an axis
 constexpr uint64_t kMaxCells = uint64_t(1) << 62;
 constexpr size_t kGrain = 1 << 14;
 
-// Stable order of `keys` (LSD radix sort, 16 bits a pass, only as many passes as the largest key needs).
+// The frame's particles in order of their cell key (stable: within a cell they keep their order), and
+// the occupied cells as they are stored: each key minus the previous one, and the count.
+struct CellOrder {
+  HugeBuffer<uint32_t> order;  // frame index of each sorted slot
+  std::vector<uint64_t> key_steps;
+  std::vector<uint32_t> counts;
+};
+
+// Stable order of 64-bit `keys` (serial LSD radix sort, 16 bits a pass, as many passes as max_key
+// needs): for frames of more than 2^32 cells, which a simulation's frames never have.
 HugeBuffer<uint32_t> stable_order(const HugeBuffer<uint64_t>& keys, uint64_t max_key) {
   const size_t n = keys.size();
   HugeBuffer<uint32_t> order(n), next(n);
@@ -28,14 +39,92 @@ HugeBuffer<uint32_t> stable_order(const HugeBuffer<uint64_t>& keys, uint64_t max
   return order;
 }
 
-// One particle quantized, in the frame's order; gathered in sorted order with one memory access each.
-struct Packed {
-  uint64_t id;
-  int16_t velocity[3];
-  uint16_t life;
-  uint8_t offset[3];
-  uint8_t type;
-};
+// The occupied cells from the keys in sorted order (sorted_key(k) for slot k).
+template <typename SortedKey>
+void occupied_cells(size_t n, SortedKey&& sorted_key, CellOrder& out) {
+  HugeBuffer<uint32_t> first(n + 1);
+  const size_t occupied = parallel_select(
+      n, [&](size_t k) { return k == 0 || sorted_key(k) != sorted_key(k - 1); },
+      [&](size_t k, size_t c) { first[c] = uint32_t(k); });
+  first[occupied] = uint32_t(n);
+  out.key_steps.resize(occupied);
+  out.counts.resize(occupied);
+  parallel_for(occupied, kGrain, [&](size_t begin, size_t end) {
+    for (size_t c = begin; c < end; ++c) {
+      out.key_steps[c] = sorted_key(first[c]) - (c > 0 ? sorted_key(first[c - 1]) : 0);
+      out.counts[c] = first[c + 1] - first[c];
+    }
+  });
+}
+
+// Stable parallel LSD radix sort of 32-bit keys with their frame indices, over fixed chunks (each
+// counted and scattered by one task): a stable sort has one answer, so neither the chunking nor the
+// thread count can change it. (sim/grid's RadixSorter is not linked into the caches' library.)
+void radix_sort(HugeBuffer<uint32_t>& keys, HugeBuffer<uint32_t>& order, int bits) {
+  const size_t n = keys.size();
+  order.resize(n);
+  if (bits == 0) {  // one cell: the frame's order
+    std::iota(order.begin(), order.end(), 0u);
+    return;
+  }
+  const int passes = (bits + 10) / 11, digit_bits = (bits + passes - 1) / passes;
+  const uint32_t buckets = 1u << digit_bits, mask = buckets - 1;
+  const size_t chunks = std::clamp<size_t>(n / (1 << 16), 1, 256), chunk = (n + chunks - 1) / chunks;
+  std::vector<uint32_t> next(chunks * buckets);
+  HugeBuffer<uint32_t> key_scratch(n), order_scratch(n);
+  for (int pass = 0; pass < passes; ++pass) {
+    const int shift = pass * digit_bits;
+    parallel_for(chunks, 1, [&](size_t cb, size_t ce) {
+      for (size_t c = cb; c < ce; ++c) {
+        uint32_t* count = &next[c * buckets];
+        std::fill(count, count + buckets, 0u);
+        for (size_t i = c * chunk, end = std::min(n, i + chunk); i < end; ++i) ++count[(keys[i] >> shift) & mask];
+      }
+    });
+    uint32_t sum = 0;  // chunk c's share of a bucket follows the shares of chunks before it
+    for (uint32_t b = 0; b < buckets; ++b)
+      for (size_t c = 0; c < chunks; ++c) {
+        const uint32_t here = next[c * buckets + b];
+        next[c * buckets + b] = sum;
+        sum += here;
+      }
+    parallel_for(chunks, 1, [&](size_t cb, size_t ce) {
+      for (size_t c = cb; c < ce; ++c) {
+        uint32_t* slot = &next[c * buckets];
+        for (size_t i = c * chunk, end = std::min(n, i + chunk); i < end; ++i) {
+          const uint32_t to = slot[(keys[i] >> shift) & mask]++;
+          key_scratch[to] = keys[i];
+          order_scratch[to] = pass == 0 ? uint32_t(i) : order[i];
+        }
+      }
+    });
+    std::swap(keys, key_scratch);
+    std::swap(order, order_scratch);
+  }
+}
+
+// The cell order. 32-bit keys (frames of up to 2^32 cells: any simulation's) sort in parallel.
+template <typename KeyOf>
+CellOrder cell_order(const DiffuseFrame& frame, uint64_t max_key, KeyOf&& key_of) {
+  const size_t n = frame.size();
+  CellOrder out;
+  if (max_key <= UINT32_MAX) {
+    HugeBuffer<uint32_t> keys(n);
+    parallel_for(n, kGrain, [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i) keys[i] = uint32_t(key_of(frame.positions[i]));
+    });
+    radix_sort(keys, out.order, int(std::bit_width(max_key)));
+    occupied_cells(n, [&](size_t k) { return uint64_t(keys[k]); }, out);
+    return out;
+  }
+  HugeBuffer<uint64_t> keys(n);
+  parallel_for(n, kGrain, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) keys[i] = key_of(frame.positions[i]);
+  });
+  out.order = stable_order(keys, max_key);
+  occupied_cells(n, [&](size_t k) { return keys[out.order[k]]; }, out);
+  return out;
+}
 
 // Rounds half away from zero without a library call (x within +-2^62).
 inline int64_t round_to_int(double x) { return int64_t(x + (x >= 0.0 ? 0.5 : -0.5)); }
@@ -97,47 +186,29 @@ std::optional<QuantizedDiffuse> quantize_diffuse(const DiffuseFrame& frame, doub
   q.life_origin = bounds.lmin;
   q.life_step = (bounds.lmax - bounds.lmin) / 65535.0;
 
-  // Each particle's cell key and quantized values, in the frame's order.
+  // Steps along each axis, as the cell keys and the offsets both use them.
   constexpr uint32_t kOffsetMask = (1u << kCellOffsetBits) - 1;
   // Reciprocals: a product's rounding (half an ulp of a double) is far below the float rounding the
   // stated bounds allow for.
   const double per_step = 1.0 / position_step;
   const double per_velocity_step = q.velocity_step > 0.0 ? 1.0 / q.velocity_step : 0.0;
   const double per_life_step = q.life_step > 0.0 ? 1.0 / q.life_step : 0.0;
-  HugeBuffer<uint64_t> keys(n);
-  HugeBuffer<Packed> packed(n);
-  parallel_for(n, kGrain, [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i) {
-      Packed& p = packed[i];
-      uint64_t cell[3];
-      for (int a = 0; a < 3; ++a) {
-        const int64_t s = round_to_int((double(frame.positions[i][a]) - q.origin[a]) * per_step);
-        const uint64_t steps = uint64_t(std::clamp<int64_t>(s, 0, int64_t(qmax[a])));
-        cell[a] = steps >> kCellOffsetBits;
-        p.offset[a] = uint8_t(steps & kOffsetMask);
-        const double v = double(frame.velocities[i][a]) * per_velocity_step;
-        p.velocity[a] = int16_t(std::clamp<int64_t>(round_to_int(v), -32767, 32767));
-      }
-      const double l = (double(frame.lifetimes[i]) - q.life_origin) * per_life_step;
-      p.life = uint16_t(std::clamp<int64_t>(round_to_int(l), 0, 65535));
-      p.id = frame.ids[i];
-      p.type = uint8_t(frame.types[i]);
-      keys[i] = cell[0] + q.cells[0] * (cell[1] + uint64_t(q.cells[1]) * cell[2]);
-    }
-  });
-  const HugeBuffer<uint32_t> order = stable_order(keys, cells - 1);
+  auto steps_of = [&](const Vec3f& x, int a) {
+    const int64_t s = round_to_int((double(x[a]) - q.origin[a]) * per_step);
+    return uint64_t(std::clamp<int64_t>(s, 0, int64_t(qmax[a])));
+  };
+  auto key_of = [&](const Vec3f& x) {
+    const uint64_t c[3] = {steps_of(x, 0) >> kCellOffsetBits, steps_of(x, 1) >> kCellOffsetBits,
+                           steps_of(x, 2) >> kCellOffsetBits};
+    return c[0] + q.cells[0] * (c[1] + uint64_t(q.cells[1]) * c[2]);
+  };
+  CellOrder sorted = cell_order(frame, cells - 1, key_of);
+  const HugeBuffer<uint32_t>& order = sorted.order;
+  out.cell_key_steps = std::move(sorted.key_steps);
+  out.cell_counts = std::move(sorted.counts);
 
-  uint64_t previous = 0;
-  for (size_t k = 0; k < n; ++k) {
-    const uint64_t key = keys[order[k]];
-    if (k == 0 || key != previous) {
-      out.cell_key_steps.push_back(key - previous);
-      out.cell_counts.push_back(0);
-      previous = key;
-    }
-    ++out.cell_counts.back();
-  }
-  keys = HugeBuffer<uint64_t>();  // 8 bytes a particle less at the peak (15M particles: 120 MB)
+  // Each particle quantized straight from the frame, in sorted order: the frame is already in a
+  // spatially coherent order (the simulator's cells), so these reads are mostly local.
   out.offsets.resize(3 * n);
   out.velocities.resize(3 * n);
   out.lifetimes.resize(n);
@@ -148,11 +219,18 @@ std::optional<QuantizedDiffuse> quantize_diffuse(const DiffuseFrame& frame, doub
     for (size_t b = begin; b < end; ++b) {
       uint8_t types = 0;
       for (size_t k = 4 * b; k < std::min(n, 4 * b + 4); ++k) {
-        const Packed& p = packed[order[k]];
-        for (int a = 0; a < 3; ++a) out.offsets[a * n + k] = p.offset[a], out.velocities[a * n + k] = p.velocity[a];
-        out.lifetimes[k] = p.life;
-        out.ids[k] = p.id;
-        types |= uint8_t(p.type << (2 * (k % 4)));
+        const uint32_t i = order[k];
+        const Vec3f& x = frame.positions[i];
+        const Vec3f& v = frame.velocities[i];
+        for (int a = 0; a < 3; ++a) {
+          out.offsets[a * n + k] = uint8_t(steps_of(x, a) & kOffsetMask);
+          out.velocities[a * n + k] =
+              int16_t(std::clamp<int64_t>(round_to_int(double(v[a]) * per_velocity_step), -32767, 32767));
+        }
+        const double l = (double(frame.lifetimes[i]) - q.life_origin) * per_life_step;
+        out.lifetimes[k] = uint16_t(std::clamp<int64_t>(round_to_int(l), 0, 65535));
+        out.ids[k] = frame.ids[i];
+        types |= uint8_t(uint8_t(frame.types[i]) << (2 * (k % 4)));
       }
       out.types[b] = types;
     }

@@ -4,11 +4,12 @@
 // advection), split by stage, with the working buffers of a running simulation, and the frame's
 // diffuse cache written as the pipeline writes it (quantized .spd, to a file in the temporary
 // directory; the page cache absorbs it, so this is the encode and the copy into the kernel, not the
-// disk). Run:
+// disk; SPUME_BENCH_CACHE=path writes it there instead and keeps it, e.g. for bench_cache). Run:
 //   build/bench/bench_diffuse --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <random>
 #include <sys/resource.h>
@@ -93,7 +94,9 @@ void BM_DiffuseFrame(benchmark::State& state) {
   };
   std::array<double, size_t(Stage::Count)> stage_ms{};
   double generated = 0, cache_ms = 0;
-  const std::filesystem::path cache = std::filesystem::temp_directory_path() / "spume_bench_diffuse.spd";
+  const char* keep = std::getenv("SPUME_BENCH_CACHE");
+  const std::filesystem::path cache =
+      keep ? std::filesystem::path(keep) : std::filesystem::temp_directory_path() / "spume_bench_diffuse.spd";
   // As the pipeline writes a frame's cache, from the callback that hands the classified frame over.
   auto write_cache = [&](const DiffuseFrame& frame, const FrameStats&) {
     const Stopwatch watch;
@@ -118,7 +121,7 @@ void BM_DiffuseFrame(benchmark::State& state) {
   for (size_t s = 0; s < stage_ms.size(); ++s) state.counters[std::string(kStageNames[s]) + "_ms"] = stage_ms[s] / iterations;
   state.counters["cache_ms"] = cache_ms / iterations;
   state.counters["cache_bytes_per_particle"] = double(std::filesystem::file_size(cache)) / double(n);
-  std::filesystem::remove(cache);
+  if (!keep) std::filesystem::remove(cache);
   state.counters["generated"] = generated / iterations;
   state.counters["updates_per_s_per_core"] =
       benchmark::Counter(double(n) / thread_count(), benchmark::Counter::kIsIterationInvariantRate);
