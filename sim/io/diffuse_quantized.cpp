@@ -103,15 +103,15 @@ void radix_sort(HugeBuffer<uint32_t>& keys, HugeBuffer<uint32_t>& order, int bit
   }
 }
 
-// The cell order. 32-bit keys (frames of up to 2^32 cells: any simulation's) sort in parallel.
+// The cell order of n particles, key_of(i) giving particle i's key (called once for each, in
+// parallel). 32-bit keys (frames of up to 2^32 cells: any simulation's) sort in parallel.
 template <typename KeyOf>
-CellOrder cell_order(const DiffuseFrame& frame, uint64_t max_key, KeyOf&& key_of) {
-  const size_t n = frame.size();
+CellOrder cell_order(size_t n, uint64_t max_key, KeyOf&& key_of) {
   CellOrder out;
   if (max_key <= UINT32_MAX) {
     HugeBuffer<uint32_t> keys(n);
     parallel_for(n, kGrain, [&](size_t begin, size_t end) {
-      for (size_t i = begin; i < end; ++i) keys[i] = uint32_t(key_of(frame.positions[i]));
+      for (size_t i = begin; i < end; ++i) keys[i] = uint32_t(key_of(i));
     });
     radix_sort(keys, out.order, int(std::bit_width(max_key)));
     occupied_cells(n, [&](size_t k) { return uint64_t(keys[k]); }, out);
@@ -119,12 +119,22 @@ CellOrder cell_order(const DiffuseFrame& frame, uint64_t max_key, KeyOf&& key_of
   }
   HugeBuffer<uint64_t> keys(n);
   parallel_for(n, kGrain, [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i) keys[i] = key_of(frame.positions[i]);
+    for (size_t i = begin; i < end; ++i) keys[i] = key_of(i);
   });
   out.order = stable_order(keys, max_key);
   occupied_cells(n, [&](size_t k) { return keys[out.order[k]]; }, out);
   return out;
 }
+
+// One particle quantized, in the frame's order: gathered in sorted order with one memory access each
+// (a frame's particles far from the fluid come in no spatial order, so that access is a cache miss).
+struct Packed {
+  uint64_t id;
+  int16_t velocity[3];
+  uint16_t life;
+  uint8_t offset[3];
+  uint8_t type;
+};
 
 // Rounds half away from zero without a library call (x within +-2^62).
 inline int64_t round_to_int(double x) { return int64_t(x + (x >= 0.0 ? 0.5 : -0.5)); }
@@ -197,18 +207,29 @@ std::optional<QuantizedDiffuse> quantize_diffuse(const DiffuseFrame& frame, doub
     const int64_t s = round_to_int((double(x[a]) - q.origin[a]) * per_step);
     return uint64_t(std::clamp<int64_t>(s, 0, int64_t(qmax[a])));
   };
-  auto key_of = [&](const Vec3f& x) {
-    const uint64_t c[3] = {steps_of(x, 0) >> kCellOffsetBits, steps_of(x, 1) >> kCellOffsetBits,
-                           steps_of(x, 2) >> kCellOffsetBits};
-    return c[0] + q.cells[0] * (c[1] + uint64_t(q.cells[1]) * c[2]);
+  // Each particle's quantized values and cell key, in the frame's order.
+  HugeBuffer<Packed> packed(n);
+  auto pack = [&](size_t i) {
+    Packed& p = packed[i];
+    uint64_t cell[3];
+    for (int a = 0; a < 3; ++a) {
+      const uint64_t steps = steps_of(frame.positions[i], a);
+      cell[a] = steps >> kCellOffsetBits;
+      p.offset[a] = uint8_t(steps & kOffsetMask);
+      const double v = double(frame.velocities[i][a]) * per_velocity_step;
+      p.velocity[a] = int16_t(std::clamp<int64_t>(round_to_int(v), -32767, 32767));
+    }
+    const double l = (double(frame.lifetimes[i]) - q.life_origin) * per_life_step;
+    p.life = uint16_t(std::clamp<int64_t>(round_to_int(l), 0, 65535));
+    p.id = frame.ids[i];
+    p.type = uint8_t(frame.types[i]);
+    return cell[0] + q.cells[0] * (cell[1] + uint64_t(q.cells[1]) * cell[2]);
   };
-  CellOrder sorted = cell_order(frame, cells - 1, key_of);
+  CellOrder sorted = cell_order(n, cells - 1, pack);
   const HugeBuffer<uint32_t>& order = sorted.order;
   out.cell_key_steps = std::move(sorted.key_steps);
   out.cell_counts = std::move(sorted.counts);
 
-  // Each particle quantized straight from the frame, in sorted order: the frame is already in a
-  // spatially coherent order (the simulator's cells), so these reads are mostly local.
   out.offsets.resize(3 * n);
   out.velocities.resize(3 * n);
   out.lifetimes.resize(n);
@@ -219,18 +240,11 @@ std::optional<QuantizedDiffuse> quantize_diffuse(const DiffuseFrame& frame, doub
     for (size_t b = begin; b < end; ++b) {
       uint8_t types = 0;
       for (size_t k = 4 * b; k < std::min(n, 4 * b + 4); ++k) {
-        const uint32_t i = order[k];
-        const Vec3f& x = frame.positions[i];
-        const Vec3f& v = frame.velocities[i];
-        for (int a = 0; a < 3; ++a) {
-          out.offsets[a * n + k] = uint8_t(steps_of(x, a) & kOffsetMask);
-          out.velocities[a * n + k] =
-              int16_t(std::clamp<int64_t>(round_to_int(double(v[a]) * per_velocity_step), -32767, 32767));
-        }
-        const double l = (double(frame.lifetimes[i]) - q.life_origin) * per_life_step;
-        out.lifetimes[k] = uint16_t(std::clamp<int64_t>(round_to_int(l), 0, 65535));
-        out.ids[k] = frame.ids[i];
-        types |= uint8_t(uint8_t(frame.types[i]) << (2 * (k % 4)));
+        const Packed& p = packed[order[k]];
+        for (int a = 0; a < 3; ++a) out.offsets[a * n + k] = p.offset[a], out.velocities[a * n + k] = p.velocity[a];
+        out.lifetimes[k] = p.life;
+        out.ids[k] = p.id;
+        types |= uint8_t(p.type << (2 * (k % 4)));
       }
       out.types[b] = types;
     }
