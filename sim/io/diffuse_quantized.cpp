@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <numeric>
 
 #include "sim/core/error.h"
 #include "sim/core/parallel.h"
@@ -15,13 +14,18 @@ constexpr double kMaxSteps = 2147483647.0;  // 2^31 - 1 steps along an axis
 constexpr uint64_t kMaxCells = uint64_t(1) << 62;
 constexpr size_t kGrain = 1 << 14;
 
-// The frame's particles in order of their cell key (stable: within a cell they keep their order), and
-// the occupied cells as they are stored: each key minus the previous one, and the count.
-struct CellOrder {
-  HugeBuffer<uint32_t> order;  // frame index of each sorted slot
-  std::vector<uint64_t> key_steps;
-  std::vector<uint32_t> counts;
+// One particle quantized, with its cell key when the frame has at most 2^32 cells: 24 bytes that the
+// sort moves whole, so that no pass reads the frame at random (a frame's particles away from the
+// fluid come in no spatial order).
+struct Packed {
+  uint64_t id;
+  int16_t velocity[3];
+  uint16_t life;
+  uint8_t offset[3];
+  uint8_t type;
+  uint32_t key;
 };
+static_assert(sizeof(Packed) == 24);
 
 // Stable order of 64-bit `keys` (serial LSD radix sort, 16 bits a pass, as many passes as max_key
 // needs): for frames of more than 2^32 cells, which a simulation's frames never have.
@@ -39,46 +43,24 @@ HugeBuffer<uint32_t> stable_order(const HugeBuffer<uint64_t>& keys, uint64_t max
   return order;
 }
 
-// The occupied cells from the keys in sorted order (sorted_key(k) for slot k).
-template <typename SortedKey>
-void occupied_cells(size_t n, SortedKey&& sorted_key, CellOrder& out) {
-  HugeBuffer<uint32_t> first(n + 1);
-  const size_t occupied = parallel_select(
-      n, [&](size_t k) { return k == 0 || sorted_key(k) != sorted_key(k - 1); },
-      [&](size_t k, size_t c) { first[c] = uint32_t(k); });
-  first[occupied] = uint32_t(n);
-  out.key_steps.resize(occupied);
-  out.counts.resize(occupied);
-  parallel_for(occupied, kGrain, [&](size_t begin, size_t end) {
-    for (size_t c = begin; c < end; ++c) {
-      out.key_steps[c] = sorted_key(first[c]) - (c > 0 ? sorted_key(first[c - 1]) : 0);
-      out.counts[c] = first[c + 1] - first[c];
-    }
-  });
-}
-
-// Stable parallel LSD radix sort of 32-bit keys with their frame indices, over fixed chunks (each
-// counted and scattered by one task): a stable sort has one answer, so neither the chunking nor the
-// thread count can change it. (sim/grid's RadixSorter is not linked into the caches' library.)
-void radix_sort(HugeBuffer<uint32_t>& keys, HugeBuffer<uint32_t>& order, int bits) {
-  const size_t n = keys.size();
-  order.resize(n);
-  if (bits == 0) {  // one cell: the frame's order
-    std::iota(order.begin(), order.end(), 0u);
-    return;
-  }
+// Stable parallel LSD radix sort of the records by their 32-bit key (its low `bits` bits), over fixed
+// chunks, each counted and scattered by one task: a stable sort has one answer, so neither the
+// chunking nor the thread count can change it.
+void radix_sort(HugeBuffer<Packed>& records, int bits) {
+  const size_t n = records.size();
+  if (bits == 0 || n < 2) return;  // one cell: the frame's order
   const int passes = (bits + 10) / 11, digit_bits = (bits + passes - 1) / passes;
   const uint32_t buckets = 1u << digit_bits, mask = buckets - 1;
   const size_t chunks = std::clamp<size_t>(n / (1 << 16), 1, 256), chunk = (n + chunks - 1) / chunks;
   std::vector<uint32_t> next(chunks * buckets);
-  HugeBuffer<uint32_t> key_scratch(n), order_scratch(n);
+  HugeBuffer<Packed> scratch(n);
   for (int pass = 0; pass < passes; ++pass) {
     const int shift = pass * digit_bits;
     parallel_for(chunks, 1, [&](size_t cb, size_t ce) {
       for (size_t c = cb; c < ce; ++c) {
         uint32_t* count = &next[c * buckets];
         std::fill(count, count + buckets, 0u);
-        for (size_t i = c * chunk, end = std::min(n, i + chunk); i < end; ++i) ++count[(keys[i] >> shift) & mask];
+        for (size_t i = c * chunk, end = std::min(n, i + chunk); i < end; ++i) ++count[(records[i].key >> shift) & mask];
       }
     });
     uint32_t sum = 0;  // chunk c's share of a bucket follows the shares of chunks before it
@@ -91,50 +73,32 @@ void radix_sort(HugeBuffer<uint32_t>& keys, HugeBuffer<uint32_t>& order, int bit
     parallel_for(chunks, 1, [&](size_t cb, size_t ce) {
       for (size_t c = cb; c < ce; ++c) {
         uint32_t* slot = &next[c * buckets];
-        for (size_t i = c * chunk, end = std::min(n, i + chunk); i < end; ++i) {
-          const uint32_t to = slot[(keys[i] >> shift) & mask]++;
-          key_scratch[to] = keys[i];
-          order_scratch[to] = pass == 0 ? uint32_t(i) : order[i];
-        }
+        for (size_t i = c * chunk, end = std::min(n, i + chunk); i < end; ++i)
+          scratch[slot[(records[i].key >> shift) & mask]++] = records[i];
       }
     });
-    std::swap(keys, key_scratch);
-    std::swap(order, order_scratch);
+    std::swap(records, scratch);
   }
 }
 
-// The cell order of n particles, key_of(i) giving particle i's key (called once for each, in
-// parallel). 32-bit keys (frames of up to 2^32 cells: any simulation's) sort in parallel.
-template <typename KeyOf>
-CellOrder cell_order(size_t n, uint64_t max_key, KeyOf&& key_of) {
-  CellOrder out;
-  if (max_key <= UINT32_MAX) {
-    HugeBuffer<uint32_t> keys(n);
-    parallel_for(n, kGrain, [&](size_t begin, size_t end) {
-      for (size_t i = begin; i < end; ++i) keys[i] = uint32_t(key_of(i));
-    });
-    radix_sort(keys, out.order, int(std::bit_width(max_key)));
-    occupied_cells(n, [&](size_t k) { return uint64_t(keys[k]); }, out);
-    return out;
-  }
-  HugeBuffer<uint64_t> keys(n);
-  parallel_for(n, kGrain, [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i) keys[i] = key_of(i);
+// The occupied cells as they are stored (each key minus the previous one, and the count) from the
+// keys in sorted order (sorted_key(k) for slot k).
+template <typename SortedKey>
+void occupied_cells(size_t n, SortedKey&& sorted_key, QuantizedDiffuse& out) {
+  HugeBuffer<uint32_t> first(n + 1);
+  const size_t occupied = parallel_select(
+      n, [&](size_t k) { return k == 0 || sorted_key(k) != sorted_key(k - 1); },
+      [&](size_t k, size_t c) { first[c] = uint32_t(k); });
+  first[occupied] = uint32_t(n);
+  out.cell_key_steps.resize(occupied);
+  out.cell_counts.resize(occupied);
+  parallel_for(occupied, kGrain, [&](size_t begin, size_t end) {
+    for (size_t c = begin; c < end; ++c) {
+      out.cell_key_steps[c] = sorted_key(first[c]) - (c > 0 ? sorted_key(first[c - 1]) : 0);
+      out.cell_counts[c] = first[c + 1] - first[c];
+    }
   });
-  out.order = stable_order(keys, max_key);
-  occupied_cells(n, [&](size_t k) { return keys[out.order[k]]; }, out);
-  return out;
 }
-
-// One particle quantized, in the frame's order: gathered in sorted order with one memory access each
-// (a frame's particles far from the fluid come in no spatial order, so that access is a cache miss).
-struct Packed {
-  uint64_t id;
-  int16_t velocity[3];
-  uint16_t life;
-  uint8_t offset[3];
-  uint8_t type;
-};
 
 // Rounds half away from zero without a library call (x within +-2^62).
 inline int64_t round_to_int(double x) { return int64_t(x + (x >= 0.0 ? 0.5 : -0.5)); }
@@ -208,27 +172,42 @@ std::optional<QuantizedDiffuse> quantize_diffuse(const DiffuseFrame& frame, doub
     return uint64_t(std::clamp<int64_t>(s, 0, int64_t(qmax[a])));
   };
   // Each particle's quantized values and cell key, in the frame's order.
-  HugeBuffer<Packed> packed(n);
-  auto pack = [&](size_t i) {
-    Packed& p = packed[i];
-    uint64_t cell[3];
-    for (int a = 0; a < 3; ++a) {
-      const uint64_t steps = steps_of(frame.positions[i], a);
-      cell[a] = steps >> kCellOffsetBits;
-      p.offset[a] = uint8_t(steps & kOffsetMask);
-      const double v = double(frame.velocities[i][a]) * per_velocity_step;
-      p.velocity[a] = int16_t(std::clamp<int64_t>(round_to_int(v), -32767, 32767));
+  HugeBuffer<Packed> records(n);
+  const bool narrow = cells - 1 <= UINT32_MAX;
+  HugeBuffer<uint64_t> wide_keys(narrow ? 0 : n);
+  parallel_for(n, kGrain, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      Packed& p = records[i];
+      uint64_t cell[3];
+      for (int a = 0; a < 3; ++a) {
+        const uint64_t steps = steps_of(frame.positions[i], a);
+        cell[a] = steps >> kCellOffsetBits;
+        p.offset[a] = uint8_t(steps & kOffsetMask);
+        const double v = double(frame.velocities[i][a]) * per_velocity_step;
+        p.velocity[a] = int16_t(std::clamp<int64_t>(round_to_int(v), -32767, 32767));
+      }
+      const double l = (double(frame.lifetimes[i]) - q.life_origin) * per_life_step;
+      p.life = uint16_t(std::clamp<int64_t>(round_to_int(l), 0, 65535));
+      p.id = frame.ids[i];
+      p.type = uint8_t(frame.types[i]);
+      const uint64_t key = cell[0] + q.cells[0] * (cell[1] + uint64_t(q.cells[1]) * cell[2]);
+      p.key = uint32_t(key);
+      if (!narrow) wide_keys[i] = key;
     }
-    const double l = (double(frame.lifetimes[i]) - q.life_origin) * per_life_step;
-    p.life = uint16_t(std::clamp<int64_t>(round_to_int(l), 0, 65535));
-    p.id = frame.ids[i];
-    p.type = uint8_t(frame.types[i]);
-    return cell[0] + q.cells[0] * (cell[1] + uint64_t(q.cells[1]) * cell[2]);
-  };
-  CellOrder sorted = cell_order(n, cells - 1, pack);
-  const HugeBuffer<uint32_t>& order = sorted.order;
-  out.cell_key_steps = std::move(sorted.key_steps);
-  out.cell_counts = std::move(sorted.counts);
+  });
+  // Into cell order (stable: within a cell the frame's order).
+  if (narrow) {
+    radix_sort(records, int(std::bit_width(cells - 1)));
+    occupied_cells(n, [&](size_t k) { return uint64_t(records[k].key); }, out);
+  } else {
+    const HugeBuffer<uint32_t> order = stable_order(wide_keys, cells - 1);
+    HugeBuffer<Packed> sorted(n);
+    parallel_for(n, kGrain, [&](size_t begin, size_t end) {
+      for (size_t k = begin; k < end; ++k) sorted[k] = records[order[k]];
+    });
+    occupied_cells(n, [&](size_t k) { return wide_keys[order[k]]; }, out);
+    records = std::move(sorted);
+  }
 
   out.offsets.resize(3 * n);
   out.velocities.resize(3 * n);
@@ -240,7 +219,7 @@ std::optional<QuantizedDiffuse> quantize_diffuse(const DiffuseFrame& frame, doub
     for (size_t b = begin; b < end; ++b) {
       uint8_t types = 0;
       for (size_t k = 4 * b; k < std::min(n, 4 * b + 4); ++k) {
-        const Packed& p = packed[order[k]];
+        const Packed& p = records[k];
         for (int a = 0; a < 3; ++a) out.offsets[a * n + k] = p.offset[a], out.velocities[a * n + k] = p.velocity[a];
         out.lifetimes[k] = p.life;
         out.ids[k] = p.id;

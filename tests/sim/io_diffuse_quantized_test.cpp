@@ -239,3 +239,15 @@ TEST(DiffuseQuantized, ParticlesAreStoredByCellAndKeepTheirOrderWithinACell) {
   EXPECT_GT(cells, 3000u);
   EXPECT_LT(cells, 6000u);
 }
+
+TEST(DiffuseQuantized, AFrameOfMoreThan2To32CellsIsStillQuantized) {
+  // 300 km along x and y: 1.9e9 steps of r / 64 (under 2^31) but 2.2e14 cells of 128 steps, more than
+  // a 32-bit cell key holds; those frames sort by 64-bit keys.
+  TempDir dir;
+  DiffuseFrame d = random_frame(5000, 13);
+  d.positions[17] = Vec3f(3e5f, 3e5f, 2.0f);
+  const DiffuseFrame e = round_trip(d);
+  EXPECT_EQ(e.size(), d.size());
+  write_diffuse_cache(dir.path / "w.spd", d, kStep);
+  EXPECT_TRUE(peek_diffuse_cache(dir.path / "w.spd").quantized);
+}
