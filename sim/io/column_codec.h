@@ -35,6 +35,10 @@ class CacheBytes {
   size_t size_ = 0, capacity_ = 0;
 };
 
+// CRC-32 (zlib's) of `bytes` bytes, the same value as one serial pass: fixed 4 MiB pieces in
+// parallel, joined with crc32_combine.
+uint32_t parallel_crc32(const void* data, size_t bytes);
+
 // The most a column of `bytes` raw bytes can take stored, its 16-byte prefix included.
 size_t column_bound(size_t bytes);
 

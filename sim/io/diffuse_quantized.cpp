@@ -1,6 +1,7 @@
 #include "sim/io/diffuse_quantized.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "sim/core/error.h"
@@ -13,7 +14,21 @@ constexpr double kMaxSteps = 2147483647.0;  // 2^31 - 1 steps along an axis
 constexpr uint64_t kMaxCells = uint64_t(1) << 62;
 constexpr size_t kGrain = 1 << 14;
 
-// Stable order of `keys` (LSD radix sort, 16 bits a pass, only as many passes as the largest key needs).
+// One particle quantized, with its cell key when the frame has at most 2^32 cells: 24 bytes that the
+// sort moves whole, so that no pass reads the frame at random (a frame's particles away from the
+// fluid come in no spatial order).
+struct Packed {
+  uint64_t id;
+  int16_t velocity[3];
+  uint16_t life;
+  uint8_t offset[3];
+  uint8_t type;
+  uint32_t key;
+};
+static_assert(sizeof(Packed) == 24);
+
+// Stable order of 64-bit `keys` (serial LSD radix sort, 16 bits a pass, as many passes as max_key
+// needs): for frames of more than 2^32 cells, which a simulation's frames never have.
 HugeBuffer<uint32_t> stable_order(const HugeBuffer<uint64_t>& keys, uint64_t max_key) {
   const size_t n = keys.size();
   HugeBuffer<uint32_t> order(n), next(n);
@@ -28,14 +43,62 @@ HugeBuffer<uint32_t> stable_order(const HugeBuffer<uint64_t>& keys, uint64_t max
   return order;
 }
 
-// One particle quantized, in the frame's order; gathered in sorted order with one memory access each.
-struct Packed {
-  uint64_t id;
-  int16_t velocity[3];
-  uint16_t life;
-  uint8_t offset[3];
-  uint8_t type;
-};
+// Stable parallel LSD radix sort of the records by their 32-bit key (its low `bits` bits), over fixed
+// chunks, each counted and scattered by one task: a stable sort has one answer, so neither the
+// chunking nor the thread count can change it.
+void radix_sort(HugeBuffer<Packed>& records, int bits) {
+  const size_t n = records.size();
+  if (bits == 0 || n < 2) return;  // one cell: the frame's order
+  const int passes = (bits + 10) / 11, digit_bits = (bits + passes - 1) / passes;
+  const uint32_t buckets = 1u << digit_bits, mask = buckets - 1;
+  const size_t chunks = std::clamp<size_t>(n / (1 << 16), 1, 256), chunk = (n + chunks - 1) / chunks;
+  std::vector<uint32_t> next(chunks * buckets);
+  HugeBuffer<Packed> scratch(n);
+  for (int pass = 0; pass < passes; ++pass) {
+    const int shift = pass * digit_bits;
+    parallel_for(chunks, 1, [&](size_t cb, size_t ce) {
+      for (size_t c = cb; c < ce; ++c) {
+        uint32_t* count = &next[c * buckets];
+        std::fill(count, count + buckets, 0u);
+        for (size_t i = c * chunk, end = std::min(n, i + chunk); i < end; ++i) ++count[(records[i].key >> shift) & mask];
+      }
+    });
+    uint32_t sum = 0;  // chunk c's share of a bucket follows the shares of chunks before it
+    for (uint32_t b = 0; b < buckets; ++b)
+      for (size_t c = 0; c < chunks; ++c) {
+        const uint32_t here = next[c * buckets + b];
+        next[c * buckets + b] = sum;
+        sum += here;
+      }
+    parallel_for(chunks, 1, [&](size_t cb, size_t ce) {
+      for (size_t c = cb; c < ce; ++c) {
+        uint32_t* slot = &next[c * buckets];
+        for (size_t i = c * chunk, end = std::min(n, i + chunk); i < end; ++i)
+          scratch[slot[(records[i].key >> shift) & mask]++] = records[i];
+      }
+    });
+    std::swap(records, scratch);
+  }
+}
+
+// The occupied cells as they are stored (each key minus the previous one, and the count) from the
+// keys in sorted order (sorted_key(k) for slot k).
+template <typename SortedKey>
+void occupied_cells(size_t n, SortedKey&& sorted_key, QuantizedDiffuse& out) {
+  HugeBuffer<uint32_t> first(n + 1);
+  const size_t occupied = parallel_select(
+      n, [&](size_t k) { return k == 0 || sorted_key(k) != sorted_key(k - 1); },
+      [&](size_t k, size_t c) { first[c] = uint32_t(k); });
+  first[occupied] = uint32_t(n);
+  out.cell_key_steps.resize(occupied);
+  out.cell_counts.resize(occupied);
+  parallel_for(occupied, kGrain, [&](size_t begin, size_t end) {
+    for (size_t c = begin; c < end; ++c) {
+      out.cell_key_steps[c] = sorted_key(first[c]) - (c > 0 ? sorted_key(first[c - 1]) : 0);
+      out.cell_counts[c] = first[c + 1] - first[c];
+    }
+  });
+}
 
 // Rounds half away from zero without a library call (x within +-2^62).
 inline int64_t round_to_int(double x) { return int64_t(x + (x >= 0.0 ? 0.5 : -0.5)); }
@@ -97,22 +160,27 @@ std::optional<QuantizedDiffuse> quantize_diffuse(const DiffuseFrame& frame, doub
   q.life_origin = bounds.lmin;
   q.life_step = (bounds.lmax - bounds.lmin) / 65535.0;
 
-  // Each particle's cell key and quantized values, in the frame's order.
+  // Steps along each axis, as the cell keys and the offsets both use them.
   constexpr uint32_t kOffsetMask = (1u << kCellOffsetBits) - 1;
   // Reciprocals: a product's rounding (half an ulp of a double) is far below the float rounding the
   // stated bounds allow for.
   const double per_step = 1.0 / position_step;
   const double per_velocity_step = q.velocity_step > 0.0 ? 1.0 / q.velocity_step : 0.0;
   const double per_life_step = q.life_step > 0.0 ? 1.0 / q.life_step : 0.0;
-  HugeBuffer<uint64_t> keys(n);
-  HugeBuffer<Packed> packed(n);
+  auto steps_of = [&](const Vec3f& x, int a) {
+    const int64_t s = round_to_int((double(x[a]) - q.origin[a]) * per_step);
+    return uint64_t(std::clamp<int64_t>(s, 0, int64_t(qmax[a])));
+  };
+  // Each particle's quantized values and cell key, in the frame's order.
+  HugeBuffer<Packed> records(n);
+  const bool narrow = cells - 1 <= UINT32_MAX;
+  HugeBuffer<uint64_t> wide_keys(narrow ? 0 : n);
   parallel_for(n, kGrain, [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
-      Packed& p = packed[i];
+      Packed& p = records[i];
       uint64_t cell[3];
       for (int a = 0; a < 3; ++a) {
-        const int64_t s = round_to_int((double(frame.positions[i][a]) - q.origin[a]) * per_step);
-        const uint64_t steps = uint64_t(std::clamp<int64_t>(s, 0, int64_t(qmax[a])));
+        const uint64_t steps = steps_of(frame.positions[i], a);
         cell[a] = steps >> kCellOffsetBits;
         p.offset[a] = uint8_t(steps & kOffsetMask);
         const double v = double(frame.velocities[i][a]) * per_velocity_step;
@@ -122,22 +190,25 @@ std::optional<QuantizedDiffuse> quantize_diffuse(const DiffuseFrame& frame, doub
       p.life = uint16_t(std::clamp<int64_t>(round_to_int(l), 0, 65535));
       p.id = frame.ids[i];
       p.type = uint8_t(frame.types[i]);
-      keys[i] = cell[0] + q.cells[0] * (cell[1] + uint64_t(q.cells[1]) * cell[2]);
+      const uint64_t key = cell[0] + q.cells[0] * (cell[1] + uint64_t(q.cells[1]) * cell[2]);
+      p.key = uint32_t(key);
+      if (!narrow) wide_keys[i] = key;
     }
   });
-  const HugeBuffer<uint32_t> order = stable_order(keys, cells - 1);
-
-  uint64_t previous = 0;
-  for (size_t k = 0; k < n; ++k) {
-    const uint64_t key = keys[order[k]];
-    if (k == 0 || key != previous) {
-      out.cell_key_steps.push_back(key - previous);
-      out.cell_counts.push_back(0);
-      previous = key;
-    }
-    ++out.cell_counts.back();
+  // Into cell order (stable: within a cell the frame's order).
+  if (narrow) {
+    radix_sort(records, int(std::bit_width(cells - 1)));
+    occupied_cells(n, [&](size_t k) { return uint64_t(records[k].key); }, out);
+  } else {
+    const HugeBuffer<uint32_t> order = stable_order(wide_keys, cells - 1);
+    HugeBuffer<Packed> sorted(n);
+    parallel_for(n, kGrain, [&](size_t begin, size_t end) {
+      for (size_t k = begin; k < end; ++k) sorted[k] = records[order[k]];
+    });
+    occupied_cells(n, [&](size_t k) { return wide_keys[order[k]]; }, out);
+    records = std::move(sorted);
   }
-  keys = HugeBuffer<uint64_t>();  // 8 bytes a particle less at the peak (15M particles: 120 MB)
+
   out.offsets.resize(3 * n);
   out.velocities.resize(3 * n);
   out.lifetimes.resize(n);
@@ -148,7 +219,7 @@ std::optional<QuantizedDiffuse> quantize_diffuse(const DiffuseFrame& frame, doub
     for (size_t b = begin; b < end; ++b) {
       uint8_t types = 0;
       for (size_t k = 4 * b; k < std::min(n, 4 * b + 4); ++k) {
-        const Packed& p = packed[order[k]];
+        const Packed& p = records[k];
         for (int a = 0; a < 3; ++a) out.offsets[a * n + k] = p.offset[a], out.velocities[a * n + k] = p.velocity[a];
         out.lifetimes[k] = p.life;
         out.ids[k] = p.id;

@@ -1,8 +1,10 @@
 #pragma once
 // An uninitialised array for the caches' large scratch columns. Fresh memory costs a page fault per
-// 4 KiB page on first touch (most of a large frame's encode time on a virtual machine), and
-// std::vector also zero-fills what is about to be overwritten; this buffer asks for 2 MiB pages
-// (transparent huge pages, madvise) and leaves the contents to the writer.
+// 4 KiB page on first touch (most of a large frame's encode time on a virtual machine: about 4 ms a
+// MiB on this one, 2 ms with 2 MiB pages), and std::vector also zero-fills what is about to be
+// overwritten; this buffer asks for 2 MiB pages (transparent huge pages, madvise), leaves the
+// contents to the writer, and hands its memory back to a small process-wide pool when it is freed, so
+// that the next frame's columns reuse pages already mapped (scratch_pool below).
 #include <sys/mman.h>
 
 #include <cstddef>
@@ -11,6 +13,7 @@
 #include <memory>
 #include <new>
 #include <type_traits>
+#include <utility>
 
 namespace spume {
 
@@ -23,6 +26,15 @@ inline void advise_huge_pages(void* p, size_t bytes) {
   if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
 }
 
+// The pool behind HugeBuffer: freed blocks are kept (up to kScratchPoolBytes of blocks in all, the oldest
+// released first beyond that) and a request takes the smallest kept block that fits, when that block
+// is at most twice the request. Block sizes are rounded up to 2 MiB times 8..15 x a power of two, so
+// that a frame slightly larger than the last still fits the last frame's blocks. Thread-safe.
+constexpr size_t kScratchPoolBytes = size_t(2) << 30;  // address space: only the touched pages are resident
+void* scratch_take(size_t bytes, size_t& block_bytes);
+void scratch_give_back(void* block, size_t block_bytes);
+size_t scratch_pool_kept_bytes();  // memory held for reuse now
+
 template <typename T>
 class HugeBuffer {
   static_assert(std::is_trivially_copyable_v<T>);
@@ -30,33 +42,41 @@ class HugeBuffer {
  public:
   HugeBuffer() = default;
   explicit HugeBuffer(size_t n) { resize(n); }
+  HugeBuffer(HugeBuffer&& o) noexcept { swap(o); }
+  HugeBuffer& operator=(HugeBuffer&& o) noexcept {
+    HugeBuffer(std::move(o)).swap(*this);
+    return *this;
+  }
+  ~HugeBuffer() {
+    if (data_) scratch_give_back(data_, block_bytes_);
+  }
   // Contents are unspecified after a resize that grows the buffer.
   void resize(size_t n) {
     if (n > capacity_) {
-      constexpr size_t kHuge = size_t(2) << 20;
-      const size_t bytes = (n * sizeof(T) + kHuge - 1) / kHuge * kHuge;
-      void* p = std::aligned_alloc(kHuge, bytes);
-      if (!p) throw std::bad_alloc();
-      madvise(p, bytes, MADV_HUGEPAGE);  // advice only: without huge pages it is an ordinary buffer
-      data_.reset(static_cast<T*>(p));
-      capacity_ = bytes / sizeof(T);
+      size_t block = 0;
+      T* p = static_cast<T*>(scratch_take(n * sizeof(T), block));
+      if (data_) scratch_give_back(data_, block_bytes_);
+      data_ = p, block_bytes_ = block, capacity_ = block / sizeof(T);
     }
     size_ = n;
   }
   size_t size() const { return size_; }
-  T* data() { return data_.get(); }
-  const T* data() const { return data_.get(); }
-  T& operator[](size_t i) { return data_.get()[i]; }
-  const T& operator[](size_t i) const { return data_.get()[i]; }
+  T* data() { return data_; }
+  const T* data() const { return data_; }
+  T& operator[](size_t i) { return data_[i]; }
+  const T& operator[](size_t i) const { return data_[i]; }
   T* begin() { return data(); }
   T* end() { return data() + size_; }
+  const T* begin() const { return data(); }
+  const T* end() const { return data() + size_; }
 
  private:
-  struct Free {
-    void operator()(T* p) const { std::free(p); }
-  };
-  std::unique_ptr<T, Free> data_;
-  size_t size_ = 0, capacity_ = 0;
+  void swap(HugeBuffer& o) noexcept {
+    std::swap(data_, o.data_), std::swap(size_, o.size_), std::swap(capacity_, o.capacity_);
+    std::swap(block_bytes_, o.block_bytes_);
+  }
+  T* data_ = nullptr;
+  size_t size_ = 0, capacity_ = 0, block_bytes_ = 0;
 };
 
 }  // namespace spume

@@ -246,7 +246,7 @@ DiffuseFrame read_compact_diffuse_cache(const std::filesystem::path& path, Diffu
          "-byte header and the CRC");
   uint32_t stored = 0;
   std::memcpy(&stored, bytes.data() + bytes.size() - 4, 4);
-  const uint32_t computed = crc32_update(crc32_start(), bytes.data(), bytes.size() - 4);
+  const uint32_t computed = parallel_crc32(bytes.data(), bytes.size() - 4);
   if (stored != computed)
     fail(where, ": corrupt: CRC-32 mismatch (stored ", std::hex, stored, ", computed ", computed, ")");
   ByteReader r(std::string_view(bytes.data(), bytes.size() - 4), where);
@@ -357,7 +357,7 @@ void write_diffuse_cache(const std::filesystem::path& path, const DiffuseFrame& 
     column(frame.ids, true), float_column(frame.positions), float_column(frame.velocities), column(frame.lifetimes);
     column(frame.types);
   }
-  const uint32_t crc = crc32_update(crc32_start(), out.data(), out.size());
+  const uint32_t crc = parallel_crc32(out.data(), out.size());
   out.store(crc);
   write_file_atomically(path, [&](std::ostream& file) { file.write(out.data(), std::streamsize(out.size())); });
 }

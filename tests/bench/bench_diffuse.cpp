@@ -1,16 +1,24 @@
 // Diffuse simulator throughput on a fixed synthetic frame: 640k fluid particles in a wavy
 // pool; 1M, 3M or 15M diffuse particles placed like a real frame's: a third inside the fluid, a third
 // within h of its surface, a third in the air above. One frame step (classify, potentials, emission,
-// advection), split by stage, with the working buffers of a running simulation. Run:
+// advection), split by stage, with the working buffers of a running simulation, and the frame's
+// diffuse cache written as the pipeline writes it (quantized .spd, to a file in the temporary
+// directory; the page cache absorbs it, so this is the encode and the copy into the kernel, not the
+// disk; SPUME_BENCH_CACHE=path writes it there instead and keeps it, e.g. for bench_cache). Run:
 //   build/bench/bench_diffuse --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <random>
 #include <sys/resource.h>
 
 #include "sim/core/parallel.h"
+#include "sim/core/stopwatch.h"
 #include "sim/diffuse/simulator.h"
+#include "sim/io/diffuse_quantized.h"
+#include "sim/io/spume_cache.h"
 #include "sim/scene/diffuse_params_reader.h"
 
 namespace spume {
@@ -74,24 +82,36 @@ void BM_DiffuseFrame(benchmark::State& state) {
   setup.fluid.particle_radius = kRadius, setup.fluid.support_radius = kH, setup.fluid.fps = 50;
   setup.params = read_diffuse_params(ParamReader::from_json(Json::object(), "bench"), setup.fluid, Vec3f(0, -9.81f, 0));
   setup.domain.min = Vec3f(-1, -1, -1), setup.domain.max = Vec3f(6, 3, 6);
-  // A running simulation keeps its particles in cell order and its working buffers from frame to
-  // frame: before each timed frame, one untimed frame from freshly placed particles puts them in
-  // order (rebuilt rather than copied, so that peak memory is the simulator's own).
+  std::array<double, size_t(Stage::Count)> stage_ms{};
+  double generated = 0, cache_ms = 0;
+  const char* keep = std::getenv("SPUME_BENCH_CACHE");
+  const std::filesystem::path cache =
+      keep ? std::filesystem::path(keep) : std::filesystem::temp_directory_path() / "spume_bench_diffuse.spd";
+  auto write = [&](const DiffuseFrame& frame, const FrameStats&) {
+    write_diffuse_cache(cache, frame, kRadius / kPositionStepsPerRadius);
+  };
+  // As the pipeline writes a frame's cache, from the callback that hands the classified frame over.
+  auto write_cache = [&](const DiffuseFrame& frame, const FrameStats& stats) {
+    const Stopwatch watch;
+    write(frame, stats);
+    cache_ms += watch.milliseconds();
+  };
+  // A running simulation keeps its particles in cell order and its working buffers (the cache
+  // writer's too) from frame to frame: before each timed frame, one untimed frame from freshly placed
+  // particles puts them in order (rebuilt rather than copied, so that peak memory is the simulator's own).
   DiffuseSimulator sim(setup);
   auto place_and_warm_up = [&] {
     sim.set_particles(DiffuseFrame{});  // free the previous particles first
     sim.set_particles(diffuse_like_a_real_frame(n));
-    sim.process_frame(a, &b, [](const DiffuseFrame&, const FrameStats&) {});
+    sim.process_frame(a, &b, write);
     sim.process_frame(b, nullptr, [](const DiffuseFrame&, const FrameStats&) {});
   };
-  std::array<double, size_t(Stage::Count)> stage_ms{};
-  double generated = 0;
   for (auto _ : state) {
     state.PauseTiming();
     place_and_warm_up();
     state.ResumeTiming();
-    // One frame of work: the grid and classification against frame 10, then the step to frame 11.
-    const FrameStats first = sim.process_frame(a, &b, [](const DiffuseFrame&, const FrameStats&) {});
+    // One frame of work: the grid, classification against frame 10 and its cache, then the step to frame 11.
+    const FrameStats first = sim.process_frame(a, &b, write_cache);
     state.PauseTiming();
     // The step's stages are reported with the next frame; its own classification is not timed here.
     const FrameStats second = sim.process_frame(b, nullptr, [](const DiffuseFrame&, const FrameStats&) {});
@@ -102,6 +122,9 @@ void BM_DiffuseFrame(benchmark::State& state) {
   }
   const double iterations = double(state.iterations());
   for (size_t s = 0; s < stage_ms.size(); ++s) state.counters[std::string(kStageNames[s]) + "_ms"] = stage_ms[s] / iterations;
+  state.counters["cache_ms"] = cache_ms / iterations;
+  state.counters["cache_bytes_per_particle"] = double(std::filesystem::file_size(cache)) / double(n);
+  if (!keep) std::filesystem::remove(cache);
   state.counters["generated"] = generated / iterations;
   state.counters["updates_per_s_per_core"] =
       benchmark::Counter(double(n) / thread_count(), benchmark::Counter::kIsIterationInvariantRate);

@@ -7,11 +7,15 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <random>
+#include <vector>
 
 #include "sim/core/error.h"
 #include "tests/support/error_of.h"
 #include "tests/support/files.h"
 #include "tests/support/temp_dir.h"
+#include "sim/io/column_codec.h"
+#include "sim/io/crc_file.h"
 #include "sim/io/spume_cache.h"
 
 namespace fs = std::filesystem;
@@ -306,4 +310,15 @@ TEST(Cache, LargeDiffuseFramesRoundTripExactlyAcrossChunks) {
   EXPECT_TRUE(e.lifetimes == d.lifetimes);
   EXPECT_TRUE(e.ids == d.ids);
   EXPECT_EQ(e.count_by_type()[2], n / 3);
+}
+
+TEST(Cache, ParallelCrcIsTheSerialCrc) {
+  // 9 MiB and 13 bytes: three 4 MiB pieces, the last one short.
+  std::vector<unsigned char> bytes((size_t(9) << 20) + 13);
+  std::mt19937 rng(5);
+  for (unsigned char& b : bytes) b = static_cast<unsigned char>(rng());
+  EXPECT_EQ(parallel_crc32(bytes.data(), bytes.size()), crc32_update(crc32_start(), bytes.data(), bytes.size()));
+  EXPECT_EQ(parallel_crc32(bytes.data(), 0), crc32_start());
+  // "123456789" is the CRC-32 check string: 0xCBF43926.
+  EXPECT_EQ(parallel_crc32("123456789", 9), 0xCBF43926u);
 }
