@@ -39,12 +39,13 @@ std::vector<float> boundary_flux(const Neighbourhoods& nb, const Boundary& bound
 // (D rho_i / Dt) / rho0 = sum_j V_j (v_i - v_j) . grad W_ij + sum_b V_b (v_i - v_b) . grad W_ib
 // (the continuity equation discretised as in [BK17], with the boundary term of [AIA12]), 1/s.
 inline float density_rate(const Neighbourhoods& nb, const std::vector<float>& flux, const Particles& p, size_t i) {
-  const Vec3f vi = p.v[i];
+  const Vec3f xi = p.x[i], vi = p.v[i];
   float s = 0.0f;
   for (uint32_t k = nb.offset[i]; k < nb.offset[i + 1]; ++k) {
-    const Pair& q = nb.pairs[k];
+    const FluidPair q = nb.pairs[k];
+    const Vec3f g = q.g(xi - p.x[q.j]);
     const Vec3f& vj = p.v[q.j];
-    s += q.gx * (vi.x() - vj.x()) + q.gy * (vi.y() - vj.y()) + q.gz * (vi.z() - vj.z());
+    s += g.x() * (vi.x() - vj.x()) + g.y() * (vi.y() - vj.y()) + g.z() * (vi.z() - vj.z());
   }
   s += vi.dot(nb.boundary_grad[i]);
   if (!flux.empty()) s -= flux[i];
@@ -56,13 +57,15 @@ void apply_pressure(const Neighbourhoods& nb, float dt, Particles& p) {
   parallel_for(p.size(), 512, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
       const float ki = p.pressure[i];
+      const Vec3f xi = p.x[i];
       float ax = 0.0f, ay = 0.0f, az = 0.0f;
       for (uint32_t k = nb.offset[i]; k < nb.offset[i + 1]; ++k) {
-        const Pair& q = nb.pairs[k];
+        const FluidPair q = nb.pairs[k];
+        const Vec3f g = q.g(xi - p.x[q.j]);
         const float kij = ki + p.pressure[q.j];
-        ax += kij * q.gx;
-        ay += kij * q.gy;
-        az += kij * q.gz;
+        ax += kij * g.x();
+        ay += kij * g.y();
+        az += kij * g.z();
       }
       p.v[i] -= dt * (Vec3f(ax, ay, az) + ki * nb.boundary_grad[i]);
     }
