@@ -1,6 +1,7 @@
 #include "sim/fluid/neighbours.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 
@@ -78,6 +79,8 @@ void build_neighbourhoods(const NeighbourGrid& grid, const Boundary& boundary, c
     BlockBuffer block;
     std::vector<float> d2;
     std::vector<uint32_t> hit;
+    uint32_t boundary_key = NeighbourGrid::kOutside;
+    std::array<NeighbourGrid::Range, 9> boundary_rows{};
     for (size_t t = tb; t < te; ++t) {
       Neighbourhoods::Task& task = nb.tasks[t];
       task.pairs.clear();
@@ -113,13 +116,25 @@ void build_neighbourhoods(const NeighbourGrid& grid, const Boundary& boundary, c
           const size_t bfirst = task.boundary_pairs.size();
           float bw_sum = 0.0f;
           Vec3f g_boundary = Vec3f::Zero();
-          bgrid.for_each_neighbour(xi, h, [&](uint32_t k, float dist2) {
-            const float r = std::sqrt(dist2);
-            const Vec3f g = (bvol[k] * kernel.grad_factor(r)) * (xi - bx[k]);
-            task.boundary_pairs.push_back(Pair{k, g.x(), g.y(), g.z()});
-            bw_sum += bvol[k] * kernel.value(r);
-            g_boundary += g;
-          });
+          // The boundary points within h, as bgrid.for_each_neighbour visits them; the block's row
+          // ranges are looked up once per boundary cell (consecutive particles mostly share one).
+          const uint32_t bkey = bgrid.key_of(xi);
+          if (bkey != NeighbourGrid::kOutside) {
+            if (bkey != boundary_key) {
+              boundary_key = bkey;
+              boundary_rows = bgrid.block_ranges(bkey);
+            }
+            for (const NeighbourGrid::Range& row : boundary_rows)
+              for (uint32_t k = row.first; k < row.second; ++k) {
+                const float dist2 = (bx[k] - xi).squaredNorm();
+                if (!(dist2 <= h2)) continue;
+                const float r = std::sqrt(dist2);
+                const Vec3f g = (bvol[k] * kernel.grad_factor(r)) * (xi - bx[k]);
+                task.boundary_pairs.push_back(Pair{k, g.x(), g.y(), g.z()});
+                bw_sum += bvol[k] * kernel.value(r);
+                g_boundary += g;
+              }
+          }
           nb.counts[i] = uint32_t(task.pairs.size() - first);
           nb.counts[n + i] = uint32_t(task.boundary_pairs.size() - bfirst);
           p.density[i] = volume * w_sum + bw_sum;
