@@ -26,14 +26,14 @@ void non_pressure_accelerations(const FluidSolverParams& params, const Neighbour
       Vec3f a = Vec3f::Zero();
       if (nu > 0.0f)
         for (uint32_t k = nb.offset[i]; k < nb.offset[i + 1]; ++k) {
-          const Pair q = nb.pairs[k];
+          const FluidPair q = nb.pairs[k];
           const Vec3f xij = xi - p.x[q.j];
           // q.g = V grad W_ij, so m_j / rho_j grad W_ij = q.g / (rho_j / rho0).
-          a += (nu * (vi - p.v[q.j]).dot(xij) / ((xij.squaredNorm() + soften) * p.density[q.j])) * q.g();
+          a += (nu * (vi - p.v[q.j]).dot(xij) / ((xij.squaredNorm() + soften) * p.density[q.j])) * q.g(xij);
         }
       if (xsph > 0.0f)
         for (uint32_t k = nb.offset[i]; k < nb.offset[i + 1]; ++k) {
-          const Pair q = nb.pairs[k];
+          const FluidPair q = nb.pairs[k];
           const float w = kernel.value((xi - p.x[q.j]).norm());
           a += (xsph * volume * w / p.density[q.j]) * (p.v[q.j] - vi);
         }

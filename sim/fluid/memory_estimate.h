@@ -9,9 +9,11 @@
 // particles with 32.8k, 66.0k and 122k boundary particles, and 28.9k with 317k (a larger tank), fit
 // 1.6 kB per fluid and 75 bytes per boundary particle with no constant term; over the whole run
 // (91 frames: the splash spreads the fluid over more grid cells and neighbour buffers grow) the peak
-// is 2.19 kB (28.9k) and 2.24 kB (84.2k) per fluid particle. Most of it is the cached neighbour
-// pairs (16 bytes each, ~30 per particle, gathered in per-task buffers and then copied: twice,
-// plus the buffers' growth slack); the particle arrays are 64 bytes.
+// is 2.19 kB (28.9k) and 2.24 kB (84.2k) per fluid particle. Most of it was the cached neighbour
+// pairs (then 16 bytes each, ~30 per particle, gathered in per-task buffers and then copied: twice,
+// plus the buffers' growth slack); the particle arrays are 64 bytes (96 with the solves' padded
+// copies of x and v). Fluid pairs are 8 bytes since: the 633k dam break's whole process peaked at
+// 465 MB against 750 MB before (0.73 kB a particle); the constant is kept as a safe upper bound.
 #include <cstdint>
 #include <optional>
 #include <vector>

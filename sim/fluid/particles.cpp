@@ -19,6 +19,8 @@ void Particles::resize(size_t n) {
   accel.resize(n);
   pressure.resize(n);
   source.resize(n);
+  x4.resize(n);
+  v4.resize(n);
 }
 
 namespace {

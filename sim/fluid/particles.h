@@ -6,6 +6,7 @@
 
 #include "sim/core/vec.h"
 #include "sim/fluid/fluid_params.h"
+#include "sim/fluid/lanes.h"
 #include "sim/geometry/solids.h"
 
 namespace spume::fluid {
@@ -23,6 +24,7 @@ struct Particles {
   std::vector<Vec3f> accel;           // non-pressure acceleration, m/s^2
   std::vector<float> pressure;        // Jacobi pressure increment k_i = rho0 p_i / rho_i^2, m^2/s^2
   std::vector<float> source;          // pressure applied so far in the current solve, m^2/s^2
+  std::vector<Padded3> x4, v4;        // x and v padded to 4 floats during a pressure solve (lanes.h)
 
   size_t size() const { return x.size(); }
   void resize(size_t n);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "sim/core/parallel.h"
+#include "sim/fluid/lanes.h"
 #include "sim/fluid/reduce.h"
 
 namespace spume::fluid {
@@ -37,34 +38,37 @@ std::vector<float> boundary_flux(const Neighbourhoods& nb, const Boundary& bound
 }
 
 // (D rho_i / Dt) / rho0 = sum_j V_j (v_i - v_j) . grad W_ij + sum_b V_b (v_i - v_b) . grad W_ib
-// (the continuity equation discretised as in [BK17], with the boundary term of [AIA12]), 1/s.
+// (the continuity equation discretised as in [BK17], with the boundary term of [AIA12]), 1/s. Reads
+// the padded copies p.x4, p.v4 (lanes.h): each pair's x, y, z in one vector operation.
 inline float density_rate(const Neighbourhoods& nb, const std::vector<float>& flux, const Particles& p, size_t i) {
-  const Vec3f vi = p.v[i];
+  const Lanes xi = Lanes::load(p.x4[i]), vi = Lanes::load(p.v4[i]);
   float s = 0.0f;
   for (uint32_t k = nb.offset[i]; k < nb.offset[i + 1]; ++k) {
-    const Pair& q = nb.pairs[k];
-    const Vec3f& vj = p.v[q.j];
-    s += q.gx * (vi.x() - vj.x()) + q.gy * (vi.y() - vj.y()) + q.gz * (vi.z() - vj.z());
+    const FluidPair q = nb.pairs[k];
+    const Lanes g = Lanes::splat(q.s) * (xi - Lanes::load(p.x4[q.j]));
+    s += (g * (vi - Lanes::load(p.v4[q.j]))).sum3();
   }
-  s += vi.dot(nb.boundary_grad[i]);
+  s += p.v4[i].vec().dot(nb.boundary_grad[i]);
   if (!flux.empty()) s -= flux[i];
   return s;
 }
 
-// One Jacobi velocity update with the pressure increments in p.pressure ([BK17], pressure/mass = k).
+// One Jacobi velocity update of p.v4 with the pressure increments in p.pressure ([BK17], pressure/mass = k).
+// p.x4[j]'s fourth lane must hold -k_j: then (x_i, k_i) - (x_j, -k_j) gives x_i - x_j and, exactly,
+// k_i + k_j (IEEE a - (-b) is a + b) from one load a neighbour.
 void apply_pressure(const Neighbourhoods& nb, float dt, Particles& p) {
   parallel_for(p.size(), 512, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
       const float ki = p.pressure[i];
-      float ax = 0.0f, ay = 0.0f, az = 0.0f;
+      const Lanes xi = Lanes::with_w(p.x4[i], ki);
+      Lanes a = Lanes::zero();
       for (uint32_t k = nb.offset[i]; k < nb.offset[i + 1]; ++k) {
-        const Pair& q = nb.pairs[k];
-        const float kij = ki + p.pressure[q.j];
-        ax += kij * q.gx;
-        ay += kij * q.gy;
-        az += kij * q.gz;
+        const FluidPair q = nb.pairs[k];
+        const Lanes d = xi - Lanes::load(p.x4[q.j]);  // (x_i - x_j, k_i + k_j)
+        a = a + d.broadcast_w() * (Lanes::splat(q.s) * d);
       }
-      p.v[i] -= dt * (Vec3f(ax, ay, az) + ki * nb.boundary_grad[i]);
+      const Lanes v = Lanes::load(p.v4[i]) - Lanes::splat(dt) * (a.xyz() + Lanes::splat(ki) * Lanes::of(nb.boundary_grad[i]));
+      v.store(p.v4[i]);
     }
   });
 }
@@ -95,12 +99,21 @@ SolveResult jacobi(const FluidSolverParams& params, const Neighbourhoods& nb, in
     return n ? sum / double(n) * error_scale : 0.0;
   };
   auto apply = [&]() {
-    apply_pressure(nb, dt, p);
     parallel_for(n, 4096, [&](size_t b, size_t e) {
-      for (size_t i = b; i < e; ++i) total[i] += p.pressure[i];
+      for (size_t i = b; i < e; ++i) {
+        total[i] += p.pressure[i];
+        p.x4[i].c[3] = -p.pressure[i];  // what apply_pressure reads for a neighbour
+      }
     });
+    apply_pressure(nb, dt, p);
   };
   std::fill(total.begin(), total.end(), 0.0f);
+  parallel_for(n, 4096, [&](size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) {
+      p.x4[i] = Padded3(p.x[i]);
+      p.v4[i] = Padded3(p.v[i]);
+    }
+  });
   double error = residual_pass();
   if (params.warm_start) {
     // Re-apply part of the last step's pressure where the fluid is compressed now (warm start, [BK17]).
@@ -117,6 +130,9 @@ SolveResult jacobi(const FluidSolverParams& params, const Neighbourhoods& nb, in
     ++result.iterations;
     error = residual_pass();
   }
+  parallel_for(n, 4096, [&](size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) p.v[i] = p.v4[i].vec();
+  });
   if (params.warm_start)
     parallel_for(n, 4096, [&](size_t b, size_t e) {
       for (size_t i = b; i < e; ++i) warm[i] = float(total[i] / warm_scale);
