@@ -1,0 +1,18 @@
+// libFuzzer target: OpenVDB point caches (io/vdb_points.h) read directly and through the format dispatch
+// of `spume info`. Its allocations are bounded by the reader's budget (sim/core/allocation_budget.h). An
+// input that trips one of the assertions Debian's OpenVDB keeps ends the process with exit 1 and a
+// message naming the file (sim/io/library_abort_guard.h), which libFuzzer reports as the target exiting:
+// spume handles such inputs by design (tests/e2e/mantaflow_cache_test.cpp keeps one), so they are not
+// kept in regressions/.
+#include "tests/fuzz/fuzz_file.h"
+#include "sim/io/particle_file.h"
+#include "sim/io/vdb_points.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  using namespace spume;
+  return fuzz::read_as_file(data, size, ".vdb", [](const std::filesystem::path& p) {
+    fuzz::expect_clean([&] { read_vdb_points(p, ""); });
+    fuzz::expect_clean([&] { read_fluid_file(p); });
+    fuzz::expect_clean([&] { describe_particle_file(p); });
+  });
+}
