@@ -21,7 +21,7 @@ namespace {
 
 using Json = nlohmann::json;
 
-constexpr int kSurveyVersion = 5;  // bump when what a frame's entry holds changes
+constexpr int kSurveyVersion = 6;  // bump when what a frame's entry holds changes
 
 // An entry's digest covers its file identity and what was measured in it: an entry edited by hand
 // (or by a tool that kept the file's identity) no longer matches and its frame is surveyed again.
@@ -164,7 +164,7 @@ std::vector<FrameSurvey::ColumnFront> column_fronts(const std::vector<Vec3f>& po
     uint32_t index = UINT32_MAX;
   };
   std::vector<FrameSurvey::ColumnFront> fronts;
-  for (int side = 0; side < 6; ++side) {
+  for (int side = 2; side <= 3; ++side) {  // -y and +y
     const int axis = side / 2, u = axis == 0 ? 1 : 0, w = axis == 2 ? 1 : 2;
     const int u0 = int(std::floor(bounds.min[u] / column)), w0 = int(std::floor(bounds.min[w] / column));
     const int nu = int(std::floor(bounds.max[u] / column)) - u0 + 1, nw = int(std::floor(bounds.max[w] / column)) - w0 + 1;

@@ -32,14 +32,16 @@ struct FrameSurvey {
   // The particles' mean stored velocity, as the file holds it (NaN without velocities): over a frame
   // interval it should match the centroid's motion (check_stored_velocities).
   Vec3f mean_velocity = Vec3f::Constant(NAN);
-  // The fluid's extremes in columns (with stored velocities only): the columns are squares of side
-  // `column` (a power of two in metres, about an eighth of the frame's largest extent, aligned to
-  // multiples of it, so consecutive frames of a similar size share them) across each side's axis. Per
-  // side and column holding 4 particles or more: the 4th outermost coordinate, and the mean stored
-  // velocity along that axis of the 8 outermost. Where such an extreme is a free surface it moves with
-  // the fluid there, whatever particles are added or removed elsewhere (check_stored_velocities).
+  // The fluid's top and bottom in columns (with stored velocities only): the columns are squares of
+  // side `column` (a power of two in metres, about an eighth of the frame's largest extent, aligned to
+  // multiples of it, so consecutive frames of a similar size share them) across y, spume's up axis
+  // (the axis turned up by fluid.up_axis). Per side (-y, +y) and column holding 4 particles or more: the
+  // 4th outermost coordinate, and the mean stored velocity along y of the 8 outermost. Where such an
+  // extreme is a free surface it moves with the fluid there, whatever particles are added or removed
+  // elsewhere (check_stored_velocities reads the side facing up; the x and z sides are walls or a
+  // narrow band's inner edge in the caches this is for, so they are not surveyed).
   struct ColumnFront {
-    int side = 0;  // 0..5: -x, +x, -y, +y, -z, +z
+    int side = 0;  // 2: -y, 3: +y (the numbering of the six sides -x, +x, -y, +y, -z, +z)
     int i = 0, j = 0;  // the column's index along the side's other two axes (in x, y, z order)
     float sheet = 0.0f, velocity = 0.0f;
   };

@@ -28,7 +28,7 @@ constexpr double kMinConsistentShare = 2.0 / 3.0;
 // Ratios of stored to moved at the fluid's extremes, one per interval, side and column that moved.
 std::vector<float> extreme_ratios(const FluidSurvey& survey, double fps, float particle_radius, float velocity_scale,
                                   const Vec3f& gravity) {
-  int up_side = -1;  // every side
+  int up_side = -1;  // both surveyed sides (-y, +y)
   if (gravity.squaredNorm() > 0.0f) {
     int axis = 0;
     gravity.cwiseAbs().maxCoeff(&axis);

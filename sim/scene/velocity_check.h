@@ -25,18 +25,21 @@ struct VelocityCheck {
 // centroid moved at least r/10, the mean of the two frames' mean stored velocities (times
 // `velocity_scale`) projected on the centroid's motion (displacement x fps / frames apart). The
 // velocities and the motion agree when the median ratio lies within [2/3, 3/2]; 3 intervals at least.
-// With fewer such intervals and ids in the files, the particles tracked by id (FrameSurvey::tracked) are
-// compared one by one where they moved at least r between consecutive frames: the mean of the two
-// frames' stored velocities projected on the motion; 20 at least. Without ids, each interval and column (FrameSurvey::fronts) of the side facing up
-// (against `gravity`; every side without gravity) whose extreme (4th outermost particle) moved at least
-// 2 r is compared instead. Only the top: the other sides of a FLIP cache are often the inner edge of its
-// narrow band or a wall, which move with reseeding, not with the fluid (on the Mantaflow jet the sides'
-// medians ranged from -0.03 to 0.25 against 0.84 on top). Trusted only when at least 2/3 of them moved
-// the way their stored velocities point (a jet entering a column raises its top while it falls: 28% on
-// SPlisHSPlasH's emitter, 75% on the Mantaflow jet). Each comparison: the mean of the two frames' velocities
-// there (the 8 outermost particles' stored velocity along the side's axis) against the extreme's
-// displacement x fps / frames apart; 5 at least. A median: columns where the extreme is not a free
-// surface moving with the fluid (a crest sliding out of its column) are outvoted.
+//
+// With fewer such intervals and ids in the files, the particles tracked by id (FrameSurvey::tracked)
+// are compared one by one where they moved at least r between consecutive frames: the mean of the two
+// frames' stored velocities projected on the motion; 20 at least.
+//
+// Without ids, the fluid's top (FrameSurvey::fronts, on the side facing up against `gravity`; both y
+// sides without gravity; nothing when gravity is along x or z, since only the y sides are surveyed):
+// each interval and column whose extreme (4th outermost particle) moved at least 2 r compares the mean
+// of the two frames' velocities there (the 8 outermost particles' stored velocity along y) with the
+// extreme's displacement x fps / frames apart; 5 at least. Only the top: the other sides of a FLIP
+// cache are often the inner edge of its narrow band or a wall, which move with reseeding, not with the
+// fluid (on the Mantaflow jet the sides' medians ranged from -0.03 to 0.25 against 0.84 on top).
+// Trusted only when at least 2/3 of them moved the way their stored velocities point (a jet entering a
+// column raises its top while it falls: 28% on SPlisHSPlasH's emitter, 75% on the Mantaflow jet); the
+// median outvotes columns where the extreme is not a free surface (a crest sliding out of its column).
 VelocityCheck check_stored_velocities(const FluidSurvey& survey, double fps, float particle_radius,
                                       float velocity_scale, const Vec3f& gravity = Vec3f(0.0f, -9.81f, 0.0f));
 
