@@ -8,6 +8,7 @@
 #include "tests/support/files.h"
 #include "tests/support/run_spume.h"
 #include "tests/support/temp_dir.h"
+#include "tests/support/text.h"
 
 namespace spume {
 namespace {
@@ -16,7 +17,7 @@ namespace fs = std::filesystem;
 using testing::CommandResult;
 using testing::run_spume;
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+using spume::testing::contains;
 
 const fs::path kCopies = fs::path(SPUME_TEST_DATA_DIR) / "mantaflow";
 const fs::path kJet = fs::path(SPUME_TEST_DATA_DIR) / "../../../shared/data/blender_mantaflow_jet";

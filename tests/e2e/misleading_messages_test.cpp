@@ -15,6 +15,7 @@
 #include "tests/support/test_fluids.h"
 #include "sim/io/bgeo.h"
 #include "sim/io/io_bytes.h"
+#include "tests/support/text.h"
 
 namespace spume {
 namespace {
@@ -24,7 +25,7 @@ namespace fs = std::filesystem;
 using testing::CommandResult;
 using testing::run_spume;
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+using spume::testing::contains;
 
 // Four BGEO frames (numbered 1-4) of two blocks of water on a 0.04 m lattice (radius 0.02 m) thrown at
 // each other in a tank, and a scene that draws them at 64x36.

@@ -20,6 +20,7 @@
 #include "tests/support/temp_dir.h"
 #include "tests/support/test_fluids.h"
 #include "tests/support/written_files.h"
+#include "tests/support/text.h"
 
 namespace spume {
 namespace {
@@ -29,7 +30,7 @@ namespace fs = std::filesystem;
 using testing::CommandResult;
 using testing::run_spume;
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+using spume::testing::contains;
 
 // Eight BGEO frames (numbered 1-8, 50 fps) of two blocks of water thrown at each other in a tank, and
 // a scene that draws the surface and the diffuse material at 64x36.

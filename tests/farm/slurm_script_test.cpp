@@ -15,6 +15,7 @@
 #include "tests/support/error_of.h"
 #include "tests/support/run_command.h"
 #include "tests/support/temp_dir.h"
+#include "tests/support/text.h"
 
 namespace spume::farm {
 namespace {
@@ -33,7 +34,7 @@ SlurmFarm example() {
   return farm;
 }
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+using spume::testing::contains;
 
 // Runs `script` with bash (environment assignments first) and returns its stdout.
 std::string run_bash(const std::string& script, const std::string& environment = "") {

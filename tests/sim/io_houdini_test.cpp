@@ -18,6 +18,7 @@
 #include "tests/support/error_of.h"
 #include "tests/support/files.h"
 #include "tests/support/temp_dir.h"
+#include "tests/support/text.h"
 
 namespace spume {
 namespace {
@@ -26,7 +27,7 @@ using testing::error_of;
 using testing::TempDir;
 namespace fs = std::filesystem;
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+using spume::testing::contains;
 
 const fs::path kCopies = fs::path(SPUME_TEST_DATA_DIR) / "houdini";
 const fs::path kShared = fs::path(SPUME_SHARED_DATA_DIR) / "houdini_bgeo_sc";

@@ -14,6 +14,7 @@
 #include "sim/io/ply.h"
 #include "sim/io/spume_cache.h"
 #include "sim/io/vtk.h"
+#include "tests/support/text.h"
 
 namespace fs = std::filesystem;
 using namespace spume;
@@ -31,7 +32,7 @@ FluidFrame sample() {
   return f;
 }
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+using spume::testing::contains;
 
 }  // namespace
 
