@@ -13,11 +13,12 @@
 namespace spume {
 namespace {
 
-// The header and the rows of frames 0..last of solver_stats.csv, or "" when they are not all there.
+// The header and the rows of frames 0..last of solver_stats.csv, or "" when they are not all there
+// or have other columns than this build writes (a file from an older spume).
 std::string stats_rows(const std::filesystem::path& path, int last) {
   std::ifstream in(path);
   std::string line, kept;
-  if (!std::getline(in, line) || line.rfind("frame,", 0) != 0) return "";
+  if (!std::getline(in, line) || line != kSolverStatsHeader) return "";
   kept = line + "\n";
   for (int f = 0; f <= last; ++f) {
     if (!std::getline(in, line) || line.rfind(std::to_string(f) + ",", 0) != 0) return "";
@@ -77,7 +78,8 @@ std::optional<FluidContinuation> find_fluid_continuation(const SimScene& scene,
   }
   c.stats = stats_rows(scene_out / "fluid" / "solver_stats.csv", c.last_frame);
   if (c.stats.empty()) {
-    why = str("fluid/solver_stats.csv does not hold the rows of frames 0-", c.last_frame);
+    why = str("fluid/solver_stats.csv does not hold the rows of frames 0-", c.last_frame, " with the columns ",
+              kSolverStatsHeader);
     return std::nullopt;
   }
   return c;

@@ -2,7 +2,8 @@
 // The fluid stage of a solver scene: spume's DFSPH solver from t = 0 to the scene's last frame,
 // one cache per frame at the scene's frame rate.
 //   OUT/<scene>/fluid/fluid_0000.spf       positions, velocities, ids (io/spume_cache.h)
-//   OUT/<scene>/fluid/solver_stats.csv     steps, time step, density error, iterations per frame
+//   OUT/<scene>/fluid/solver_stats.csv     steps, time step, density error, iterations, fastest particle
+//                                          per frame (kSolverStatsHeader)
 //   OUT/<scene>/fluid/bodies.csv           the dynamic solids' poses per frame (body_track_file.h)
 //   OUT/<scene>/fluid_bgeo/fluid_0000.bgeo the same as BGEO, when output.fluid_bgeo is set
 //   OUT/<scene>/fluid/restart_0000.spr     the solver's state after the last frame (fluid_continuation.h)
@@ -22,6 +23,12 @@
 #include "sim/scene/sim_scene.h"
 
 namespace spume {
+
+// The columns of solver_stats.csv. max_speed is the fastest particle at the frame's time (m/s);
+// seconds, the frame's wall clock, stays last.
+inline constexpr const char* kSolverStatsHeader =
+    "frame,time,steps,mean_dt,density_error_pct,max_density_error_pct,density_iterations,divergence_iterations,"
+    "corrections,max_speed,seconds";
 
 struct FluidStageOptions {
   std::filesystem::path out_root = "out";

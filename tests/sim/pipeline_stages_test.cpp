@@ -9,7 +9,9 @@
 #include "sim/fluid/solver.h"
 #include "sim/io/spume_cache.h"
 #include "sim/pipeline/cache_state.h"
+#include "sim/pipeline/fluid_stage.h"
 #include "sim/pipeline/simulate_scene.h"
+#include "tests/support/csv.h"
 #include "tests/support/temp_dir.h"
 #include "tests/support/written_files.h"
 
@@ -149,6 +151,22 @@ TEST_F(PipelineStages, SimulationIsCurrentExactlyWhenSimulateSceneWouldRunNothin
   simulate_scene(scene_of(json), options);
   fs::remove(out / "tiny/diffuse/diffuse_0003.spd");
   EXPECT_FALSE(scene_simulation_is_current(scene_of(json), options));  // a diffuse frame is missing
+}
+
+TEST_F(PipelineStages, SolverStatsGiveEachFramesFastestParticle) {
+  // No solids: the block falls freely, keeps its lattice (no compression, no pressure) and every
+  // particle moves at g t, 0.4905 m/s a frame at 20 fps.
+  Json json = tiny_solver_scene();
+  json.erase("solids");
+  FluidStageOptions fluid;
+  fluid.out_root = out;
+  fluid.quiet = true;
+  run_fluid_stage(scene_of(json), fluid);
+  const auto rows = testing::read_csv(out / "tiny/fluid/solver_stats.csv");
+  ASSERT_EQ(rows.size(), 5u);
+  ASSERT_EQ(rows[0].size(), 11u);
+  EXPECT_EQ(rows[0][9], "max_speed");
+  for (int k = 0; k <= 3; ++k) EXPECT_NEAR(std::stod(rows[k + 1][9]), 9.81 * k / 20.0, 1e-3) << "frame " << k;
 }
 
 TEST(SceneKeys, SameSettingsInAnyKeyOrderAgreeAndFrameRangeIsLeftOut) {
