@@ -123,22 +123,26 @@ ScreenBins::ScreenBins(const DiffuseFrame& frame, const std::array<float, kDiffu
     for (size_t j = 0; j < m; ++j) r[j] = radius[size_t(frame.types[b + j])];
     projector.pixel_rects(frame.positions.data() + b, r, m, q);
   };
+  // Every sphere of chunk c that covers a pixel, in particle order, with its pixel rectangle: the
+  // walk both passes make.
+  auto each_visible = [&](size_t c, auto&& visit) {
+    SphereProjector::Rects q;
+    float r[SphereProjector::kBatch];
+    for (size_t b = chunk_begin(c), e = chunk_begin(c + 1); b < e; b += SphereProjector::kBatch) {
+      const size_t m = std::min(SphereProjector::kBatch, e - b);
+      project(b, m, r, q);
+      for (size_t j = 0; j < m; ++j)
+        if (q.x0[j] <= q.x1[j]) visit(b + j, q.x0[j], q.y0[j], q.x1[j], q.y1[j]);  // else not drawn or not seen
+    }
+  };
   std::vector<uint32_t> count(chunks * bins, 0);  // per chunk, per bin
   parallel_for(chunks, 1, [&](size_t c0, size_t c1) {
     for (size_t c = c0; c < c1; ++c) {
       uint32_t* cnt = count.data() + c * bins;
-      SphereProjector::Rects q;
-      float r[SphereProjector::kBatch];
-      for (size_t b = chunk_begin(c), e = chunk_begin(c + 1); b < e; b += SphereProjector::kBatch) {
-        const size_t m = std::min(SphereProjector::kBatch, e - b);
-        project(b, m, r, q);
-        for (size_t j = 0; j < m; ++j) {
-          const int x0 = q.x0[j], y0 = q.y0[j], x1 = q.x1[j], y1 = q.y1[j];
-          if (x0 > x1) continue;  // not drawn or not seen
-          for (int by = y0 / kBin; by <= y1 / kBin; ++by)
-            for (int bx = x0 / kBin; bx <= x1 / kBin; ++bx) ++cnt[size_t(by) * size_t(bins_x_) + size_t(bx)];
-        }
-      }
+      each_visible(c, [&](size_t, int x0, int y0, int x1, int y1) {
+        for (int by = y0 / kBin; by <= y1 / kBin; ++by)
+          for (int bx = x0 / kBin; bx <= x1 / kBin; ++bx) ++cnt[size_t(by) * size_t(bins_x_) + size_t(bx)];
+      });
     }
   });
 
@@ -163,26 +167,18 @@ ScreenBins::ScreenBins(const DiffuseFrame& frame, const std::array<float, kDiffu
   parallel_for(chunks, 1, [&](size_t c0, size_t c1) {
     for (size_t c = c0; c < c1; ++c) {
       uint32_t* cursor = count.data() + c * bins;
-      SphereProjector::Rects q;
-      float r[SphereProjector::kBatch];
-      for (size_t b = chunk_begin(c), e = chunk_begin(c + 1); b < e; b += SphereProjector::kBatch) {
-        const size_t m = std::min(SphereProjector::kBatch, e - b);
-        project(b, m, r, q);
-        for (size_t j = 0; j < m; ++j) {
-          const int x0 = q.x0[j], y0 = q.y0[j], x1 = q.x1[j], y1 = q.y1[j];
-          if (x0 > x1) continue;
-          const Vec3f& p = frame.positions[b + j];
-          const uint32_t type = uint32_t(frame.types[b + j]);
-          for (int by = y0 / kBin; by <= y1 / kBin; ++by)
-            for (int bx = x0 / kBin; bx <= x1 / kBin; ++bx) {
-              const int ox = bx * kBin, oy = by * kBin;
-              const uint32_t lx0 = uint32_t(std::max(x0, ox) - ox), lx1 = uint32_t(std::min(x1, ox + kBin - 1) - ox);
-              const uint32_t ly0 = uint32_t(std::max(y0, oy) - oy), ly1 = uint32_t(std::min(y1, oy + kBin - 1) - oy);
-              const size_t k = size_t(by) * size_t(bins_x_) + size_t(bx);
-              entries_[bin_start_[k] + cursor[k]++] = BinnedSphere::make(p, lx0, lx1, ly0, ly1, type);
-            }
-        }
-      }
+      each_visible(c, [&](size_t i, int x0, int y0, int x1, int y1) {
+        const Vec3f& p = frame.positions[i];
+        const uint32_t type = uint32_t(frame.types[i]);
+        for (int by = y0 / kBin; by <= y1 / kBin; ++by)
+          for (int bx = x0 / kBin; bx <= x1 / kBin; ++bx) {
+            const int ox = bx * kBin, oy = by * kBin;
+            const uint32_t lx0 = uint32_t(std::max(x0, ox) - ox), lx1 = uint32_t(std::min(x1, ox + kBin - 1) - ox);
+            const uint32_t ly0 = uint32_t(std::max(y0, oy) - oy), ly1 = uint32_t(std::min(y1, oy + kBin - 1) - oy);
+            const size_t k = size_t(by) * size_t(bins_x_) + size_t(bx);
+            entries_[bin_start_[k] + cursor[k]++] = BinnedSphere::make(p, lx0, lx1, ly0, ly1, type);
+          }
+      });
     }
   });
 }
