@@ -3,6 +3,7 @@
 // does the x, y and z of a pair at once, each lane the very IEEE operation the scalar code does on
 // that component, so results keep every bit (the fourth lane is 0 and never read back). Without SSE2 the
 // same operations run on plain floats.
+#include <cstdint>
 #include <vector>
 
 #include "sim/core/vec.h"
@@ -60,5 +61,31 @@ struct Lanes {
   float sum3() const { return (m[0] + m[1]) + m[2]; }
 };
 #endif
+
+// A sum over a particle's pairs kept as kPartialSums independent vector sums: pair k (counted from the
+// first) goes to sum k mod kPartialSums, and the sums are added in a fixed order at the end. One
+// running sum makes every pair wait for the previous pair's addition (about 4 cycles); four keep the
+// adder busy. The result depends only on the pairs and their order, never on threads.
+constexpr uint32_t kPartialSums = 4;
+
+struct PartialSums {
+  Lanes s[kPartialSums] = {Lanes::zero(), Lanes::zero(), Lanes::zero(), Lanes::zero()};
+
+  // Adds term(k) for k in [begin, end).
+  template <typename Term>
+  void add_pairs(uint32_t begin, uint32_t end, Term&& term) {
+    uint32_t k = begin;
+    for (; k + kPartialSums <= end; k += kPartialSums) {
+      s[0] = s[0] + term(k);
+      s[1] = s[1] + term(k + 1);
+      s[2] = s[2] + term(k + 2);
+      s[3] = s[3] + term(k + 3);
+    }
+    if (k < end) s[0] = s[0] + term(k++);
+    if (k < end) s[1] = s[1] + term(k++);
+    if (k < end) s[2] = s[2] + term(k);
+  }
+  Lanes total() const { return (s[0] + s[1]) + (s[2] + s[3]); }
+};
 
 }  // namespace spume::fluid

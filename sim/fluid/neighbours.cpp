@@ -8,6 +8,9 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
 
 #include "sim/core/error.h"
 #include "sim/core/parallel.h"
@@ -52,6 +55,72 @@ inline size_t candidates_within(const float* xs, const float* ys, const float* z
   return hits;
 }
 
+#if defined(__x86_64__)
+// The same, eight candidates at a time, for processors with AVX2 (m is a multiple of kLanes = 8). The
+// lanes do the same IEEE operations (no FMA: AVX2 alone does not enable it), so d2 and the hits are too.
+__attribute__((target("avx2"))) size_t candidates_within_avx2(const float* xs, const float* ys, const float* zs,
+                                                              size_t m, float px, float py, float pz, float h2,
+                                                              float* d2, uint32_t* hit) {
+  size_t hits = 0;
+  const __m256 vx = _mm256_set1_ps(px), vy = _mm256_set1_ps(py), vz = _mm256_set1_ps(pz), vh2 = _mm256_set1_ps(h2);
+  for (size_t k = 0; k < m; k += 8) {
+    const __m256 dx = _mm256_sub_ps(_mm256_loadu_ps(xs + k), vx);
+    const __m256 dy = _mm256_sub_ps(_mm256_loadu_ps(ys + k), vy);
+    const __m256 dz = _mm256_sub_ps(_mm256_loadu_ps(zs + k), vz);
+    const __m256 r2 =
+        _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)), _mm256_mul_ps(dz, dz));
+    _mm256_storeu_ps(d2 + k, r2);
+    for (unsigned mask = unsigned(_mm256_movemask_ps(_mm256_cmp_ps(r2, vh2, _CMP_LE_OS))); mask; mask &= mask - 1)
+      hit[hits++] = uint32_t(k) + uint32_t(__builtin_ctz(mask));
+  }
+  return hits;
+}
+
+const bool kHasAvx2 = __builtin_cpu_supports("avx2");
+#endif
+
+// candidates_within on the widest vectors the processor has.
+inline size_t candidates_within_best(const float* xs, const float* ys, const float* zs, size_t m, float px, float py,
+                                     float pz, float h2, float* d2, uint32_t* hit) {
+#if defined(__x86_64__)
+  if (kHasAvx2) return candidates_within_avx2(xs, ys, zs, m, px, py, pz, h2, d2, hit);
+#endif
+  return candidates_within(xs, ys, zs, m, px, py, pz, h2, d2, hit);
+}
+
+// For the m squared distances d2 of the pairs within h: s = volume * kernel.grad_factor(r) and
+// w = kernel.value(r), r = sqrt(d2). With SSE2 four pairs at a time, both branches of the piecewise
+// kernel computed and the right one selected per lane: the same IEEE operations in the same order as
+// the scalar CubicSpline calls, hence the same bits, without a mispredicted branch on q <= 1/2 for
+// about every other pair. d2, s and w must have room for m rounded up to a multiple of 4.
+inline void kernel_terms(const CubicSpline& kernel, float volume, float* d2, size_t m, float* s, float* w) {
+#if defined(__SSE2__)
+  for (size_t k = m; k % 4 != 0; ++k) d2[k] = 0.0f;
+  const __m128 inv_h = _mm_set1_ps(kernel.inv_h), one = _mm_set1_ps(1.0f), half = _mm_set1_ps(0.5f);
+  const __m128 zero = _mm_setzero_ps(), sigma = _mm_set1_ps(kernel.sigma), two = _mm_set1_ps(2.0f);
+  const __m128 six = _mm_set1_ps(6.0f), three = _mm_set1_ps(3.0f), vol = _mm_set1_ps(volume);
+  const __m128 grad_sigma = _mm_set1_ps(kernel.grad_sigma), neg_grad_sigma = _mm_set1_ps(-kernel.grad_sigma);
+  auto select = [](__m128 mask, __m128 a, __m128 b) { return _mm_or_ps(_mm_and_ps(mask, a), _mm_andnot_ps(mask, b)); };
+  for (size_t k = 0; k < m; k += 4) {
+    const __m128 q = _mm_mul_ps(_mm_sqrt_ps(_mm_loadu_ps(d2 + k)), inv_h);
+    const __m128 inner = _mm_cmple_ps(q, half), inside = _mm_cmple_ps(q, one), positive = _mm_cmpgt_ps(q, zero);
+    const __m128 q2 = _mm_mul_ps(q, q), t = _mm_sub_ps(one, q);
+    const __m128 w_inner = _mm_mul_ps(sigma, _mm_add_ps(_mm_mul_ps(six, _mm_sub_ps(_mm_mul_ps(q2, q), q2)), one));
+    const __m128 w_outer = _mm_mul_ps(_mm_mul_ps(_mm_mul_ps(_mm_mul_ps(sigma, two), t), t), t);
+    const __m128 g_inner = _mm_mul_ps(grad_sigma, _mm_sub_ps(_mm_mul_ps(three, q), two));
+    const __m128 g_outer = _mm_and_ps(positive, _mm_div_ps(_mm_mul_ps(_mm_mul_ps(neg_grad_sigma, t), t), q));
+    _mm_storeu_ps(w + k, _mm_and_ps(inside, select(inner, w_inner, w_outer)));
+    _mm_storeu_ps(s + k, _mm_mul_ps(vol, _mm_and_ps(inside, select(inner, g_inner, g_outer))));
+  }
+#else
+  for (size_t k = 0; k < m; ++k) {
+    const float r = std::sqrt(d2[k]);
+    s[k] = volume * kernel.grad_factor(r);
+    w[k] = kernel.value(r);
+  }
+#endif
+}
+
 }  // namespace
 
 void build_neighbourhoods(const NeighbourGrid& grid, const Boundary& boundary, const CubicSpline& kernel, float volume,
@@ -66,6 +135,7 @@ void build_neighbourhoods(const NeighbourGrid& grid, const Boundary& boundary, c
   nb.tasks.resize(tasks);
   nb.counts.resize(2 * n);
   nb.boundary_grad.resize(n);
+  nb.reach.resize(n);
   const float eps = 1.0e-6f / h2;
 
   // One sweep per cell: gather the 27-cell block once (structure of arrays, padded for SIMD), then for
@@ -77,7 +147,7 @@ void build_neighbourhoods(const NeighbourGrid& grid, const Boundary& boundary, c
   // neighbours enter the first sum only: they do not move in response to particle i's pressure.
   parallel_for(tasks, 1, [&](size_t tb, size_t te) {
     BlockBuffer block;
-    std::vector<float> d2;
+    std::vector<float> d2, hit_d2, hit_s, hit_w;
     std::vector<uint32_t> hit;
     uint32_t boundary_key = NeighbourGrid::kOutside;
     std::array<NeighbourGrid::Range, 9> boundary_rows{};
@@ -91,28 +161,37 @@ void build_neighbourhoods(const NeighbourGrid& grid, const Boundary& boundary, c
         const size_t m = block.size();
         d2.resize(m);
         hit.resize(m);
+        hit_d2.resize(m + 4), hit_s.resize(m + 4), hit_w.resize(m + 4);
         const float *bxs = block.x(), *bys = block.y(), *bzs = block.z();
         const uint32_t* index = block.sorted_index();
         for (uint32_t i = grid.cell_begin(c); i < grid.cell_begin(c + 1); ++i) {
           const Vec3f xi = p.x[i];
           const float px = xi.x(), py = xi.y(), pz = xi.z();
-          const size_t hits = candidates_within(bxs, bys, bzs, m, px, py, pz, h2, d2.data(), hit.data());
+          const size_t hits = candidates_within_best(bxs, bys, bzs, m, px, py, pz, h2, d2.data(), hit.data());
+          for (size_t c_hit = 0; c_hit < hits; ++c_hit) hit_d2[c_hit] = d2[hit[c_hit]];
+          kernel_terms(kernel, volume, hit_d2.data(), hits, hit_s.data(), hit_w.data());
+          // Room for every hit first: with no allocation inside the loop the sums stay in registers.
           const size_t first = task.pairs.size();
+          task.pairs.resize(first + hits);
+          FluidPair* out = task.pairs.data() + first;
+          size_t kept = 0;
+          uint32_t lowest = uint32_t(i), highest = uint32_t(i);
           float w_sum = kernel.value_at_zero();
           Vec3f g_fluid = Vec3f::Zero();
           float g2_sum = 0.0f;
           for (size_t c_hit = 0; c_hit < hits; ++c_hit) {
-            const size_t k = hit[c_hit];
-            const uint32_t j = index[k];
+            const uint32_t j = index[hit[c_hit]];
             if (j == i) continue;
-            const float r = std::sqrt(d2[k]);
-            const FluidPair q{j, volume * kernel.grad_factor(r)};
+            const FluidPair q{j, hit_s[c_hit]};
             const Vec3f g = q.g(xi - p.x[j]);
-            task.pairs.push_back(q);
-            w_sum += kernel.value(r);
+            out[kept++] = q;
+            lowest = std::min(lowest, j), highest = std::max(highest, j);
+            w_sum += hit_w[c_hit];
             g_fluid += g;
             g2_sum += g.squaredNorm();
           }
+          task.pairs.resize(first + kept);
+          nb.reach[i] = {lowest, highest};
           const size_t bfirst = task.boundary_pairs.size();
           float bw_sum = 0.0f;
           Vec3f g_boundary = Vec3f::Zero();

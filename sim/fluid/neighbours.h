@@ -28,9 +28,8 @@ struct Pair {
 // A fluid neighbour j of particle i with s = V grad_factor(|x_i - x_j|), so that the volume-weighted
 // kernel gradient is V grad_i W_ij = s (x_i - x_j) (1/m), computed by the same float operations as
 // when the pair was found, hence the same bits. 8 bytes a pair instead of 16 with g stored: the pressure
-// iterations stream this list about 20 times a step, and past ~200k particles they are limited by
-// memory bandwidth, not arithmetic (x_j is gathered anyway and mostly sits in cache, neighbours of
-// consecutive particles overlapping).
+// iterations stream this list about 10 times a step (once an iteration: fused_sweep.h), and x_j is
+// gathered anyway and mostly sits in cache, neighbours of consecutive particles overlapping.
 struct FluidPair {
   uint32_t j;
   float s;
@@ -43,6 +42,10 @@ struct Neighbourhoods {
   std::vector<uint32_t> boundary_offset; // n + 1
   std::vector<Pair> boundary_pairs;      // boundary neighbours (index into the boundary's sorted order)
   std::vector<Vec3f> boundary_grad;      // sum_b V_b grad W_ib per particle, 1/m
+  struct Reach {                         // the lowest and highest fluid index among i and its neighbours
+    uint32_t lowest, highest;
+  };
+  std::vector<Reach> reach;
   std::vector<uint32_t> counts;          // scratch
   struct Task {                          // scratch: pairs of one fixed range of grid cells
     std::vector<FluidPair> pairs;

@@ -3,7 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
 #include "sim/core/parallel.h"
+#include "sim/fluid/fused_sweep.h"
 #include "sim/fluid/lanes.h"
 #include "sim/fluid/reduce.h"
 
@@ -37,40 +42,121 @@ std::vector<float> boundary_flux(const Neighbourhoods& nb, const Boundary& bound
   return flux;
 }
 
-// (D rho_i / Dt) / rho0 = sum_j V_j (v_i - v_j) . grad W_ij + sum_b V_b (v_i - v_b) . grad W_ib
-// (the continuity equation discretised as in [BK17], with the boundary term of [AIA12]), 1/s. Reads
-// the padded copies p.x4, p.v4 (lanes.h): each pair's x, y, z in one vector operation.
-inline float density_rate(const Neighbourhoods& nb, const std::vector<float>& flux, const Particles& p, size_t i) {
+#if defined(__x86_64__)
+const bool kHasAvx2 = __builtin_cpu_supports("avx2");
+
+// The pair sums below on processors with AVX2: two pairs a 256-bit vector, pair k + 1 in the upper
+// half, so the running sums (k mod 4 = 0 | 1) and (2 | 3) are PartialSums' four sums in pairs of
+// halves, the leftover pairs go to the sums PartialSums gives them, and the four are added in its
+// order: every lane does the IEEE operations the SSE2 path does, and the results are the same bits.
+__attribute__((target("avx2"))) inline __m256 both_halves(const Padded3& low, const Padded3& high) {
+  return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_load_ps(low.c)), _mm_load_ps(high.c), 1);
+}
+__attribute__((target("avx2"))) inline __m256 splat_halves(float low, float high) {
+  return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_set1_ps(low)), _mm_set1_ps(high), 1);
+}
+__attribute__((target("avx2"))) inline Lanes total_of(__m256 a, __m256 b, PartialSums& sums) {
+  sums.s[0] = sums.s[0] + Lanes{_mm256_castps256_ps128(a)};
+  sums.s[1] = sums.s[1] + Lanes{_mm256_extractf128_ps(a, 1)};
+  sums.s[2] = sums.s[2] + Lanes{_mm256_castps256_ps128(b)};
+  sums.s[3] = sums.s[3] + Lanes{_mm256_extractf128_ps(b, 1)};
+  return sums.total();
+}
+
+__attribute__((target("avx2"))) Lanes rate_pairs_avx2(const Neighbourhoods& nb, const Particles& p, size_t i) {
   const Lanes xi = Lanes::load(p.x4[i]), vi = Lanes::load(p.v4[i]);
-  float s = 0.0f;
-  for (uint32_t k = nb.offset[i]; k < nb.offset[i + 1]; ++k) {
-    const FluidPair q = nb.pairs[k];
-    const Lanes g = Lanes::splat(q.s) * (xi - Lanes::load(p.x4[q.j]));
-    s += (g * (vi - Lanes::load(p.v4[q.j]))).sum3();
+  const __m256 xi2 = _mm256_set_m128(xi.m, xi.m), vi2 = _mm256_set_m128(vi.m, vi.m);
+  __m256 a = _mm256_setzero_ps(), b = _mm256_setzero_ps();
+  uint32_t k = nb.offset[i];
+  const uint32_t end = nb.offset[i + 1];
+  for (; k + kPartialSums <= end; k += kPartialSums) {
+    const FluidPair* q = &nb.pairs[k];
+    const __m256 g01 = _mm256_mul_ps(splat_halves(q[0].s, q[1].s), _mm256_sub_ps(xi2, both_halves(p.x4[q[0].j], p.x4[q[1].j])));
+    a = _mm256_add_ps(a, _mm256_mul_ps(g01, _mm256_sub_ps(vi2, both_halves(p.v4[q[0].j], p.v4[q[1].j]))));
+    const __m256 g23 = _mm256_mul_ps(splat_halves(q[2].s, q[3].s), _mm256_sub_ps(xi2, both_halves(p.x4[q[2].j], p.x4[q[3].j])));
+    b = _mm256_add_ps(b, _mm256_mul_ps(g23, _mm256_sub_ps(vi2, both_halves(p.v4[q[2].j], p.v4[q[3].j]))));
   }
+  PartialSums sums;
+  sums.add_pairs(k, end, [&](uint32_t r) {
+    const FluidPair q = nb.pairs[r];
+    return (Lanes::splat(q.s) * (xi - Lanes::load(p.x4[q.j]))) * (vi - Lanes::load(p.v4[q.j]));
+  });
+  return total_of(a, b, sums);
+}
+
+__attribute__((target("avx2"))) Lanes pressure_pairs_avx2(const Neighbourhoods& nb, const Particles& p, size_t i,
+                                                          Lanes xi) {
+  const __m256 xi2 = _mm256_set_m128(xi.m, xi.m);
+  __m256 a = _mm256_setzero_ps(), b = _mm256_setzero_ps();
+  uint32_t k = nb.offset[i];
+  const uint32_t end = nb.offset[i + 1];
+  for (; k + kPartialSums <= end; k += kPartialSums) {
+    const FluidPair* q = &nb.pairs[k];
+    const __m256 d01 = _mm256_sub_ps(xi2, both_halves(p.x4[q[0].j], p.x4[q[1].j]));
+    a = _mm256_add_ps(a, _mm256_mul_ps(_mm256_shuffle_ps(d01, d01, 0xff), _mm256_mul_ps(splat_halves(q[0].s, q[1].s), d01)));
+    const __m256 d23 = _mm256_sub_ps(xi2, both_halves(p.x4[q[2].j], p.x4[q[3].j]));
+    b = _mm256_add_ps(b, _mm256_mul_ps(_mm256_shuffle_ps(d23, d23, 0xff), _mm256_mul_ps(splat_halves(q[2].s, q[3].s), d23)));
+  }
+  PartialSums sums;
+  sums.add_pairs(k, end, [&](uint32_t r) {
+    const FluidPair q = nb.pairs[r];
+    const Lanes d = xi - Lanes::load(p.x4[q.j]);
+    return d.broadcast_w() * (Lanes::splat(q.s) * d);
+  });
+  return total_of(a, b, sums);
+}
+#endif
+
+// sum_j V_j (v_i - v_j) . grad W_ij as a vector of the x, y, z terms, from the padded copies p.x4,
+// p.v4 (lanes.h): each pair's x, y, z in one vector operation. The pairs are summed into
+// kPartialSums vector sums, pair k into sum k mod kPartialSums (lanes.h), so that the additions of
+// consecutive pairs do not wait on each other; the order depends on the pair list only.
+inline Lanes rate_pairs(const Neighbourhoods& nb, const Particles& p, size_t i) {
+#if defined(__x86_64__)
+  if (kHasAvx2) return rate_pairs_avx2(nb, p, i);
+#endif
+  const Lanes xi = Lanes::load(p.x4[i]), vi = Lanes::load(p.v4[i]);
+  PartialSums sums;
+  sums.add_pairs(nb.offset[i], nb.offset[i + 1], [&](uint32_t k) {
+    const FluidPair q = nb.pairs[k];
+    return (Lanes::splat(q.s) * (xi - Lanes::load(p.x4[q.j]))) * (vi - Lanes::load(p.v4[q.j]));
+  });
+  return sums.total();
+}
+
+// sum_j (k_i + k_j) V_j grad W_ij in x, y, z, with xi = (x_i, k_i); see apply_pressure.
+inline Lanes pressure_pairs(const Neighbourhoods& nb, const Particles& p, size_t i, Lanes xi) {
+#if defined(__x86_64__)
+  if (kHasAvx2) return pressure_pairs_avx2(nb, p, i, xi);
+#endif
+  PartialSums sums;
+  sums.add_pairs(nb.offset[i], nb.offset[i + 1], [&](uint32_t k) {
+    const FluidPair q = nb.pairs[k];
+    const Lanes d = xi - Lanes::load(p.x4[q.j]);  // (x_i - x_j, k_i + k_j)
+    return d.broadcast_w() * (Lanes::splat(q.s) * d);
+  });
+  return sums.total();
+}
+
+// (D rho_i / Dt) / rho0 = sum_j V_j (v_i - v_j) . grad W_ij + sum_b V_b (v_i - v_b) . grad W_ib
+// (the continuity equation discretised as in [BK17], with the boundary term of [AIA12]), 1/s.
+inline float density_rate(const Neighbourhoods& nb, const std::vector<float>& flux, const Particles& p, size_t i) {
+  float s = rate_pairs(nb, p, i).sum3();
   s += p.v4[i].vec().dot(nb.boundary_grad[i]);
   if (!flux.empty()) s -= flux[i];
   return s;
 }
 
-// One Jacobi velocity update of p.v4 with the pressure increments in p.pressure ([BK17], pressure/mass = k).
+// One Jacobi velocity update of p.v4[b, e) with the pressure increments in p.pressure ([BK17], pressure/mass = k).
 // p.x4[j]'s fourth lane must hold -k_j: then (x_i, k_i) - (x_j, -k_j) gives x_i - x_j and, exactly,
 // k_i + k_j (IEEE a - (-b) is a + b) from one load a neighbour.
-void apply_pressure(const Neighbourhoods& nb, float dt, Particles& p) {
-  parallel_for(p.size(), 512, [&](size_t b, size_t e) {
-    for (size_t i = b; i < e; ++i) {
-      const float ki = p.pressure[i];
-      const Lanes xi = Lanes::with_w(p.x4[i], ki);
-      Lanes a = Lanes::zero();
-      for (uint32_t k = nb.offset[i]; k < nb.offset[i + 1]; ++k) {
-        const FluidPair q = nb.pairs[k];
-        const Lanes d = xi - Lanes::load(p.x4[q.j]);  // (x_i - x_j, k_i + k_j)
-        a = a + d.broadcast_w() * (Lanes::splat(q.s) * d);
-      }
-      const Lanes v = Lanes::load(p.v4[i]) - Lanes::splat(dt) * (a.xyz() + Lanes::splat(ki) * Lanes::of(nb.boundary_grad[i]));
-      v.store(p.v4[i]);
-    }
-  });
+void apply_pressure(const Neighbourhoods& nb, float dt, Particles& p, size_t b, size_t e) {
+  for (size_t i = b; i < e; ++i) {
+    const float ki = p.pressure[i];
+    const Lanes a = pressure_pairs(nb, p, i, Lanes::with_w(p.x4[i], ki));
+    const Lanes v = Lanes::load(p.v4[i]) - Lanes::splat(dt) * (a.xyz() + Lanes::splat(ki) * Lanes::of(nb.boundary_grad[i]));
+    v.store(p.v4[i]);
+  }
 }
 
 // Jacobi loop shared by both solves ([BK17]: divergence-free and constant-density solvers). `residual(i)` returns particle i's
@@ -85,27 +171,30 @@ SolveResult jacobi(const FluidSolverParams& params, const Neighbourhoods& nb, in
                    std::vector<float>& warm, Particles& p, Residual&& residual) {
   const size_t n = p.size();
   std::vector<float>& total = p.source;  // pressure applied so far in this solve
-  auto residual_pass = [&]() {
-    const double sum = chunked_sum(n, [&](size_t b, size_t e) {
-      double s = 0.0;
-      for (size_t i = b; i < e; ++i) {
-        const float r = residual(i);
-        const float c = std::isnan(r) ? 0.0f : std::max(r, 0.0f);
-        p.pressure[i] = c * p.factor[i] * scale;
-        s += c;
-      }
-      return s;
-    });
-    return n ? sum / double(n) * error_scale : 0.0;
+  // The new pressures of particles [b, e) from the current velocities; returns their summed residual.
+  auto residual_range = [&](size_t b, size_t e) {
+    double s = 0.0;
+    for (size_t i = b; i < e; ++i) {
+      const float r = residual(i);
+      const float c = std::isnan(r) ? 0.0f : std::max(r, 0.0f);
+      p.pressure[i] = c * p.factor[i] * scale;
+      s += c;
+    }
+    return s;
   };
-  auto apply = [&]() {
+  auto mean_error = [&](double sum) { return n ? sum / double(n) * error_scale : 0.0; };
+  auto residual_pass = [&]() { return mean_error(chunked_sum(n, residual_range)); };
+  // Applies the pressures, then returns the residual pass's error, in one sweep (fused_sweep.h).
+  const std::vector<Neighbourhoods::Reach> reach = chunk_reach(nb);
+  auto apply_then_residual = [&]() {
     parallel_for(n, 4096, [&](size_t b, size_t e) {
       for (size_t i = b; i < e; ++i) {
         total[i] += p.pressure[i];
         p.x4[i].c[3] = -p.pressure[i];  // what apply_pressure reads for a neighbour
       }
     });
-    apply_pressure(nb, dt, p);
+    return mean_error(
+        fused_sweep(n, reach, [&](size_t b, size_t e) { apply_pressure(nb, dt, p, b, e); }, residual_range));
   };
   std::fill(total.begin(), total.end(), 0.0f);
   parallel_for(n, 4096, [&](size_t b, size_t e) {
@@ -121,14 +210,12 @@ SolveResult jacobi(const FluidSolverParams& params, const Neighbourhoods& nb, in
       for (size_t i = b; i < e; ++i)
         p.pressure[i] = p.pressure[i] > 0.0f ? float(kWarmStartFraction * warm[i] * warm_scale) : 0.0f;
     });
-    apply();
-    error = residual_pass();
+    error = apply_then_residual();
   }
   SolveResult result;
   while ((error > tolerance || result.iterations < min_iterations) && result.iterations < max_iterations) {
-    apply();
+    error = apply_then_residual();
     ++result.iterations;
-    error = residual_pass();
   }
   parallel_for(n, 4096, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) p.v[i] = p.v4[i].vec();
