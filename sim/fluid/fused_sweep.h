@@ -42,8 +42,8 @@ double fused_sweep(size_t n, const std::vector<Neighbourhoods::Reach>& reach, Up
   const size_t chunks = (n + kReduceChunk - 1) / kReduceChunk;
   auto chunk_end = [&](size_t c) { return std::min(n, (c + 1) * kReduceChunk); };
   std::vector<double> partial(chunks, 0.0);
-  // Parts of at least 64 chunks: smaller ones would leave most residuals waiting for a neighbour part.
-  const size_t parts = std::clamp<size_t>(chunks / 64, 1, size_t(thread_count()));
+  // One part a thread, of at least 8 chunks: smaller ones would leave most residuals to the last phase.
+  const size_t parts = std::clamp<size_t>(chunks / 8, 1, size_t(thread_count()));
   std::vector<std::vector<size_t>> waiting(parts);
   parallel_for(parts, 1, [&](size_t pb, size_t pe) {
     for (size_t part = pb; part < pe; ++part) {

@@ -109,8 +109,8 @@ TEST(FluidDeterminism, OneAndTwoThreadsGiveByteIdenticalStates) {
   EXPECT_TRUE(same(two.positions, again.positions));
 }
 
-// 74k particles: enough for the pressure solves' fused sweep to cut the particles into one part per
-// thread (fused_sweep.h), whose meeting chunks are finished last.
+// 74k particles in 145 chunks, the fused sweep of the pressure solves cut into one part per thread
+// (fused_sweep.h) with many chunks whose neighbours reach across the cut: those are finished last.
 TEST(FluidDeterminism, OneAndTwoThreadsGiveByteIdenticalStatesWhenTheSweepIsSplit) {
   auto run_large = [](int threads) {
     set_thread_count(threads);
@@ -129,7 +129,7 @@ TEST(FluidDeterminism, OneAndTwoThreadsGiveByteIdenticalStatesWhenTheSweepIsSpli
   const FluidFrame one = run_large(1);
   const FluidFrame two = run_large(2);
   set_thread_count(0);
-  ASSERT_GT(one.size(), 2u * 64u * 512u);  // two parts of at least 64 chunks
+  ASSERT_GT(one.size(), 2u * 8u * 512u);  // two parts of at least 8 chunks
   auto same = [](const auto& a, const auto& b) {
     return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0;
   };
