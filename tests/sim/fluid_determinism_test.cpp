@@ -9,15 +9,26 @@
 namespace spume {
 namespace {
 
+// A tank from the origin to `max`.
+Solid tank_to(const Vec3f& max) {
+  Solid tank;
+  tank.kind = Solid::Kind::Tank;
+  tank.min = Vec3f(0, 0, 0);
+  tank.max = max;
+  return tank;
+}
+
+template <typename A>
+bool same_bytes(const A& a, const A& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0;
+}
+
 FluidFrame run(int threads) {
   set_thread_count(threads);
   FluidSolverParams p;
   p.particle_radius = 0.01f;
   p.xsph = 0.05f;  // exercise every term
-  Solid tank;
-  tank.kind = Solid::Kind::Tank;
-  tank.min = Vec3f(0, 0, 0);
-  tank.max = Vec3f(0.6f, 0.4f, 0.2f);
+  const Solid tank = tank_to(Vec3f(0.6f, 0.4f, 0.2f));
   Solid sphere;
   sphere.kind = Solid::Kind::Sphere;
   sphere.center = Vec3f(0.45f, 0.05f, 0.1f);
@@ -47,10 +58,7 @@ BodyRun run_with_bodies(int threads) {
   set_thread_count(threads);
   FluidSolverParams p;
   p.particle_radius = 0.01f;
-  Solid tank;
-  tank.kind = Solid::Kind::Tank;
-  tank.min = Vec3f(0, 0, 0);
-  tank.max = Vec3f(0.4f, 0.4f, 0.3f);
+  const Solid tank = tank_to(Vec3f(0.4f, 0.4f, 0.3f));
   Solid box;
   box.kind = Solid::Kind::Box;
   box.min = Vec3f(0.05f, 0.2f, 0.08f);
@@ -75,11 +83,8 @@ TEST(FluidDeterminism, OneAndTwoThreadsGiveByteIdenticalStatesWithDynamicBodies)
   set_thread_count(0);
   ASSERT_EQ(one.frame.size(), two.frame.size());
   EXPECT_EQ(one.frame.time, two.frame.time);
-  auto same = [](const auto& a, const auto& b) {
-    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0;
-  };
-  EXPECT_TRUE(same(one.frame.positions, two.frame.positions));
-  EXPECT_TRUE(same(one.frame.velocities, two.frame.velocities));
+  EXPECT_TRUE(same_bytes(one.frame.positions, two.frame.positions));
+  EXPECT_TRUE(same_bytes(one.frame.velocities, two.frame.velocities));
   ASSERT_EQ(one.poses.size(), 2u);
   ASSERT_EQ(two.poses.size(), 2u);
   for (size_t k = 0; k < 2; ++k) {
@@ -100,13 +105,10 @@ TEST(FluidDeterminism, OneAndTwoThreadsGiveByteIdenticalStates) {
   ASSERT_EQ(one.size(), two.size());
   EXPECT_GT(one.time, 0.0);
   EXPECT_EQ(one.time, two.time);
-  auto same = [](const auto& a, const auto& b) {
-    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0;
-  };
-  EXPECT_TRUE(same(one.positions, two.positions));
-  EXPECT_TRUE(same(one.velocities, two.velocities));
-  EXPECT_TRUE(same(one.masses, two.masses));
-  EXPECT_TRUE(same(two.positions, again.positions));
+  EXPECT_TRUE(same_bytes(one.positions, two.positions));
+  EXPECT_TRUE(same_bytes(one.velocities, two.velocities));
+  EXPECT_TRUE(same_bytes(one.masses, two.masses));
+  EXPECT_TRUE(same_bytes(two.positions, again.positions));
 }
 
 // 74k particles in 145 chunks, the fused sweep of the pressure solves cut into one part per thread
@@ -116,10 +118,7 @@ TEST(FluidDeterminism, OneAndTwoThreadsGiveByteIdenticalStatesWhenTheSweepIsSpli
     set_thread_count(threads);
     FluidSolverParams p;
     p.particle_radius = 0.005f;
-    Solid tank;
-    tank.kind = Solid::Kind::Tank;
-    tank.min = Vec3f(0, 0, 0);
-    tank.max = Vec3f(0.8f, 0.6f, 0.42f);
+    const Solid tank = tank_to(Vec3f(0.8f, 0.6f, 0.42f));
     FluidSolver solver(p, {FluidBlock{Vec3f(0, 0, 0), Vec3f(0.42f, 0.42f, 0.42f)}}, SolidSet({tank}));
     for (int i = 0; i < 8; ++i) solver.step();
     FluidFrame f = solver.frame(0);
@@ -130,12 +129,9 @@ TEST(FluidDeterminism, OneAndTwoThreadsGiveByteIdenticalStatesWhenTheSweepIsSpli
   const FluidFrame two = run_large(2);
   set_thread_count(0);
   ASSERT_GT(one.size(), 2u * 8u * 512u);  // two parts of at least 8 chunks
-  auto same = [](const auto& a, const auto& b) {
-    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0;
-  };
-  EXPECT_TRUE(same(one.positions, two.positions));
-  EXPECT_TRUE(same(one.velocities, two.velocities));
-  EXPECT_TRUE(same(one.masses, two.masses));
+  EXPECT_TRUE(same_bytes(one.positions, two.positions));
+  EXPECT_TRUE(same_bytes(one.velocities, two.velocities));
+  EXPECT_TRUE(same_bytes(one.masses, two.masses));
 }
 
 }  // namespace
