@@ -42,6 +42,17 @@ std::vector<float> boundary_flux(const Neighbourhoods& nb, const Boundary& bound
   return flux;
 }
 
+// One pair's term of the density rate: V_j grad W_ij * (v_i - v_j), in x, y, z.
+inline Lanes rate_term(const Particles& p, const FluidPair& q, Lanes xi, Lanes vi) {
+  return (Lanes::splat(q.s) * (xi - Lanes::load(p.x4[q.j]))) * (vi - Lanes::load(p.v4[q.j]));
+}
+
+// One pair's pressure term with xi = (x_i, k_i): (k_i + k_j) V_j grad W_ij in x, y, z (apply_pressure).
+inline Lanes pressure_term(const Particles& p, const FluidPair& q, Lanes xi) {
+  const Lanes d = xi - Lanes::load(p.x4[q.j]);  // (x_i - x_j, k_i + k_j)
+  return d.broadcast_w() * (Lanes::splat(q.s) * d);
+}
+
 #if defined(__x86_64__)
 const bool kHasAvx2 = __builtin_cpu_supports("avx2");
 
@@ -77,10 +88,7 @@ __attribute__((target("avx2"))) Lanes rate_pairs_avx2(const Neighbourhoods& nb, 
     b = _mm256_add_ps(b, _mm256_mul_ps(g23, _mm256_sub_ps(vi2, both_halves(p.v4[q[2].j], p.v4[q[3].j]))));
   }
   PartialSums sums;
-  sums.add_pairs(k, end, [&](uint32_t r) {
-    const FluidPair q = nb.pairs[r];
-    return (Lanes::splat(q.s) * (xi - Lanes::load(p.x4[q.j]))) * (vi - Lanes::load(p.v4[q.j]));
-  });
+  sums.add_pairs(k, end, [&](uint32_t r) { return rate_term(p, nb.pairs[r], xi, vi); });
   return total_of(a, b, sums);
 }
 
@@ -98,11 +106,7 @@ __attribute__((target("avx2"))) Lanes pressure_pairs_avx2(const Neighbourhoods& 
     b = _mm256_add_ps(b, _mm256_mul_ps(_mm256_shuffle_ps(d23, d23, 0xff), _mm256_mul_ps(splat_halves(q[2].s, q[3].s), d23)));
   }
   PartialSums sums;
-  sums.add_pairs(k, end, [&](uint32_t r) {
-    const FluidPair q = nb.pairs[r];
-    const Lanes d = xi - Lanes::load(p.x4[q.j]);
-    return d.broadcast_w() * (Lanes::splat(q.s) * d);
-  });
+  sums.add_pairs(k, end, [&](uint32_t r) { return pressure_term(p, nb.pairs[r], xi); });
   return total_of(a, b, sums);
 }
 #endif
@@ -117,10 +121,7 @@ inline Lanes rate_pairs(const Neighbourhoods& nb, const Particles& p, size_t i) 
 #endif
   const Lanes xi = Lanes::load(p.x4[i]), vi = Lanes::load(p.v4[i]);
   PartialSums sums;
-  sums.add_pairs(nb.offset[i], nb.offset[i + 1], [&](uint32_t k) {
-    const FluidPair q = nb.pairs[k];
-    return (Lanes::splat(q.s) * (xi - Lanes::load(p.x4[q.j]))) * (vi - Lanes::load(p.v4[q.j]));
-  });
+  sums.add_pairs(nb.offset[i], nb.offset[i + 1], [&](uint32_t k) { return rate_term(p, nb.pairs[k], xi, vi); });
   return sums.total();
 }
 
@@ -130,11 +131,7 @@ inline Lanes pressure_pairs(const Neighbourhoods& nb, const Particles& p, size_t
   if (kHasAvx2) return pressure_pairs_avx2(nb, p, i, xi);
 #endif
   PartialSums sums;
-  sums.add_pairs(nb.offset[i], nb.offset[i + 1], [&](uint32_t k) {
-    const FluidPair q = nb.pairs[k];
-    const Lanes d = xi - Lanes::load(p.x4[q.j]);  // (x_i - x_j, k_i + k_j)
-    return d.broadcast_w() * (Lanes::splat(q.s) * d);
-  });
+  sums.add_pairs(nb.offset[i], nb.offset[i + 1], [&](uint32_t k) { return pressure_term(p, nb.pairs[k], xi); });
   return sums.total();
 }
 
