@@ -2,7 +2,7 @@
 // Solid boundaries as particles: layers of "frozen fluid" inside each solid, down to the depth h
 // below its surface, each particle standing for the solid volume V_b of its lattice cell (or shell
 // segment). A fluid particle's density then gets + rho0 V_b W_ib, and pressure pushes it from the wall
-// (the boundary pressure force of [AIA12]: p_i / rho_i^2 only, see pressure.h).
+// (with the particle's own pressure, [AIA12], or the fluid's extrapolated into the wall: pressure.h).
 //
 // Why not the single surface layer of Akinci et al. 2012 (V_b = 1 / sum_k W_bk)? Summed over a plane,
 // that layer contributes W1(y) / W1(0) to a fluid particle at distance y (W1 = the kernel integrated

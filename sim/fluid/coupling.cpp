@@ -55,17 +55,18 @@ void BodyLoads::totals(double dt, std::vector<Vec3d>& f, std::vector<Vec3d>& t) 
   }
 }
 
-void add_pressure_impulse(const Neighbourhoods& nb, const Boundary& boundary, const CouplingBodies& bodies,
-                          float particle_mass, double dt_s, const Particles& p, BodyLoads& loads) {
+void add_pressure_impulse(const Neighbourhoods& nb, const Boundary& boundary, const WallPressure* walls,
+                          const CouplingBodies& bodies, float particle_mass, double dt_s, const Particles& p,
+                          BodyLoads& loads) {
   std::span<const Vec3f> bx = boundary.grid.sorted_points();
   const float scale = float(double(particle_mass) * dt_s);
   sum_over_bodies(p.size(), bodies, loads.impulse, loads.angular_impulse, [&](size_t i, auto& add) {
     const float k = p.source[i];
-    if (k == 0.0f) return;
     for (uint32_t e = nb.boundary_offset[i]; e < nb.boundary_offset[i + 1]; ++e) {
       const Pair q = nb.boundary_pairs[e];
       const int body = bodies.body_of_solid[boundary.sorted_solid[q.j]];
-      if (body >= 0) add(body, bx[q.j], Vec3f((scale * k) * q.g()));
+      const float k_pair = walls ? k + walls->total[q.j] : k;  // as apply_pressure pushed the particle
+      if (body >= 0 && k_pair != 0.0f) add(body, bx[q.j], Vec3f((scale * k_pair) * q.g()));
     }
   });
 }

@@ -14,6 +14,7 @@
 
 #include "sim/core/vec.h"
 #include "sim/fluid/boundary.h"
+#include "sim/fluid/boundary_pressure.h"
 #include "sim/fluid/fluid_params.h"
 #include "sim/fluid/neighbours.h"
 #include "sim/fluid/particles.h"
@@ -35,9 +36,11 @@ struct CouplingBodies {
   std::vector<Vec3f> centre;
 };
 
-// Adds the impulse of a pressure solve whose total pressures are p.source (m^2/s^2), with step dt_s.
-void add_pressure_impulse(const Neighbourhoods& nb, const Boundary& boundary, const CouplingBodies& bodies,
-                          float particle_mass, double dt_s, const Particles& p, BodyLoads& loads);
+// Adds the impulse of a pressure solve whose total pressures are p.source (m^2/s^2), with step dt_s;
+// with `walls`, each pair's pressure is k_i + k_b as the solve applied it (boundary_pressure.h).
+void add_pressure_impulse(const Neighbourhoods& nb, const Boundary& boundary, const WallPressure* walls,
+                          const CouplingBodies& bodies, float particle_mass, double dt_s, const Particles& p,
+                          BodyLoads& loads);
 
 // Adds the boundary viscosity force at the current velocities (call before the pressure solves
 // change them; the same term as forces.cpp).

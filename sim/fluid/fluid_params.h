@@ -56,6 +56,9 @@ struct FluidSolverParams {
   float boundary_spacing = declared_float(keys::solver::boundary_spacing);
   // A fluid particle found inside a solid after a step is put this far (in units of r) outside it.
   float push_out_skin = declared_float(keys::solver::push_out_skin);
+  // Walls press back with each fluid particle's own pressure ([AIA12]), or, when true, with the fluid's
+  // pressure extrapolated into them (boundary_pressure.h).
+  bool extrapolate_wall_pressure = false;
 };
 
 // An initial cuboid of fluid, m. Filled on a lattice of spacing 2r centred in the box, so the

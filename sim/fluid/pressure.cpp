@@ -147,11 +147,18 @@ inline float density_rate(const Neighbourhoods& nb, const std::vector<float>& fl
 // One Jacobi velocity update of p.v4[b, e) with the pressure increments in p.pressure ([BK17], pressure/mass = k).
 // p.x4[j]'s fourth lane must hold -k_j: then (x_i, k_i) - (x_j, -k_j) gives x_i - x_j and, exactly,
 // k_i + k_j (IEEE a - (-b) is a + b) from one load a neighbour.
-void apply_pressure(const Neighbourhoods& nb, float dt, Particles& p, size_t b, size_t e) {
+void apply_pressure(const Neighbourhoods& nb, const WallPressure* walls, float dt, Particles& p, size_t b, size_t e) {
   for (size_t i = b; i < e; ++i) {
     const float ki = p.pressure[i];
     const Lanes a = pressure_pairs(nb, p, i, Lanes::with_w(p.x4[i], ki));
-    const Lanes v = Lanes::load(p.v4[i]) - Lanes::splat(dt) * (a.xyz() + Lanes::splat(ki) * Lanes::of(nb.boundary_grad[i]));
+    // sum_b (k_i + k_b) V_b grad W_ib, with k_b = 0 unless the walls' pressure is extrapolated.
+    Vec3f wall = ki * nb.boundary_grad[i];
+    if (walls)
+      for (uint32_t k = nb.boundary_offset[i]; k < nb.boundary_offset[i + 1]; ++k) {
+        const Pair q = nb.boundary_pairs[k];
+        wall += walls->k[q.j] * q.g();
+      }
+    const Lanes v = Lanes::load(p.v4[i]) - Lanes::splat(dt) * (a.xyz() + Lanes::of(wall));
     v.store(p.v4[i]);
   }
 }
@@ -165,7 +172,7 @@ void apply_pressure(const Neighbourhoods& nb, float dt, Particles& p, size_t b, 
 template <typename Residual>
 SolveResult jacobi(const FluidSolverParams& params, const Neighbourhoods& nb, int min_iterations, int max_iterations,
                    float tolerance, double error_scale, float scale, double warm_scale, float dt,
-                   std::vector<float>& warm, Particles& p, Residual&& residual) {
+                   std::vector<float>& warm, Particles& p, WallPressure* walls, float rise_scale, Residual&& residual) {
   const size_t n = p.size();
   std::vector<float>& total = p.source;  // pressure applied so far in this solve
   // The new pressures of particles [b, e) from the current velocities; returns their summed residual.
@@ -190,10 +197,15 @@ SolveResult jacobi(const FluidSolverParams& params, const Neighbourhoods& nb, in
         p.x4[i].c[3] = -p.pressure[i];  // what apply_pressure reads for a neighbour
       }
     });
+    if (walls) {
+      walls->extrapolate(p.pressure, rise_scale);
+      rise_scale = 0.0f;
+    }
     return mean_error(
-        fused_sweep(n, reach, [&](size_t b, size_t e) { apply_pressure(nb, dt, p, b, e); }, residual_range));
+        fused_sweep(n, reach, [&](size_t b, size_t e) { apply_pressure(nb, walls, dt, p, b, e); }, residual_range));
   };
   std::fill(total.begin(), total.end(), 0.0f);
+  if (walls) std::fill(walls->total.begin(), walls->total.end(), 0.0f);
   parallel_for(n, 4096, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
       p.x4[i] = Padded3(p.x[i]);
@@ -229,7 +241,7 @@ SolveResult jacobi(const FluidSolverParams& params, const Neighbourhoods& nb, in
 }  // namespace
 
 SolveResult divergence_solve(const FluidSolverParams& params, const Neighbourhoods& nb, const Boundary& boundary,
-                             double dt, Particles& p) {
+                             double dt, Particles& p, WallPressure* walls) {
   const std::vector<float> flux = boundary_flux(nb, boundary, p);
   auto residual = [&](size_t i) {
     return p.density[i] >= kDivergenceMinDensity ? density_rate(nb, flux, p, i) : NAN;
@@ -237,17 +249,17 @@ SolveResult divergence_solve(const FluidSolverParams& params, const Neighbourhoo
   // Residual: compression rate (1/s); pressure k = rate alpha / dt; error: mean rate * dt; stored k dt.
   return jacobi(params, nb, params.min_divergence_iterations, params.max_divergence_iterations,
                 params.divergence_tolerance, dt, float(1.0 / dt), 1.0 / dt, float(dt), p.divergence_warm, p,
-                residual);
+                walls, 0.0f, residual);
 }
 
 SolveResult density_solve(const FluidSolverParams& params, const Neighbourhoods& nb, const Boundary& boundary,
-                          double dt, Particles& p) {
+                          double dt, Particles& p, WallPressure* walls) {
   const std::vector<float> flux = boundary_flux(nb, boundary, p);
   const float fdt = float(dt);
   // Residual: rho*_i / rho0 - 1 ([BK17]); pressure k = residual alpha / dt^2; stored k dt^2.
   auto residual = [&](size_t i) { return p.density[i] + fdt * density_rate(nb, flux, p, i) - 1.0f; };
   return jacobi(params, nb, params.min_density_iterations, params.max_density_iterations, params.density_tolerance,
-                1.0, float(1.0 / (dt * dt)), 1.0 / (dt * dt), fdt, p.density_warm, p, residual);
+                1.0, float(1.0 / (dt * dt)), 1.0 / (dt * dt), fdt, p.density_warm, p, walls, 1.0f, residual);
 }
 
 }  // namespace spume::fluid

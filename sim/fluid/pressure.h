@@ -3,20 +3,26 @@
 // hydrodynamics", SCA 2015; "Divergence-free SPH for incompressible and viscous fluids", TVCG 2017].
 //
 // Both are Jacobi iterations on a per-particle pressure k_i = rho0 p_i / rho_i^2 (~ p_i / rho0, m^2/s^2) that
-// changes velocities by ([BK17]; the boundary term is [AIA12]'s, with the fluid particle's pressure)
-//   v_i -= dt * ( sum_j (k_i + k_j) V_j grad W_ij + k_i sum_b V_b grad W_ib ),
+// changes velocities by ([BK17]; the wall term is [AIA12]'s with k_b = 0, [ARH12]'s with k_b extrapolated)
+//   v_i -= dt * ( sum_j (k_i + k_j) V_j grad W_ij + sum_b (k_i + k_b) V_b grad W_ib ),
 // and each iteration sets k_i so that particle i alone would cancel its residual:
 //   divergence-free: k_i = (D rho_i / Dt / rho0) alpha_i / dt
 //   constant density: k_i = (rho*_i / rho0 - 1) alpha_i / dt^2
 // with rho*_i = rho_i + dt D rho_i / Dt the density predicted from the current velocities.
 // Only compression is corrected (negative residuals count as 0: a free surface may expand).
 //
-// The wall term carries k_i once, as in [AIA12]: it is the force whose work is the change of the
-// fluid particle's own pressure energy (walls store none), so walls neither gain nor give energy.
-// Mirroring the pressure into the wall (k_b = k_i, twice the force) balances a resting column more
-// exactly (the column then does not settle), but measured here it kept feeding energy into a tank at
-// rest (rms speed 0.07 -> 0.11 m/s over 1 s, where the single factor decays to 0.017), so it is not
-// used.
+// The wall's pressure k_b is 0 by default, so the wall term is k_i's alone ([AIA12]), or, with
+// fluid.solver.wall_pressure = extrapolated (walls != nullptr), extrapolated from the fluid beside the
+// wall. The own form cannot hold deep water: with boundary layers that complete a particle's
+// neighbourhood, sum_b V_b grad W_ib is about minus the fluid's sum, so a floor particle's own pressure
+// cancels on itself and only its neighbours' pressures move it (down). On a resting lattice the first
+// steps then let every other layer fall freely, a velocity field the density residual cannot see
+// (layers k +- 1 cancel in it), and a 20-layer pool churns at up to 1 m/s; extrapolated, 0.29 m/s (README,
+// Deep fluid against walls). Mirroring (k_b = k_i) fixes the floor but leaves a wall uniform in pressure
+// along it, so a particle at a side wall gets only its fluid half's share of the vertical gradient (a
+// quarter in an edge): edges then ran down at 0.9 m/s. The extrapolated form is not the default: with
+// it a floating box's draft falls 13% short of Archimedes' (6% with the own form), and where a solid
+// cuts the starting lattice the doubled wall push flings the overlapping particles (README).
 //
 // Warm start ([BK17]; optional, off by default): each solve first applies half the previous
 // step's total pressure where the fluid is compressed now. It saves about half the iterations in
@@ -25,6 +31,7 @@
 // (rms speed 3-13 cm/s after 2 s at 4000 particles, against 0.8 cm/s without; variants that also
 // let iterations lower the pressure needed relaxation and were no cheaper, or diverged).
 #include "sim/fluid/boundary.h"
+#include "sim/fluid/boundary_pressure.h"
 #include "sim/fluid/fluid_params.h"
 #include "sim/fluid/neighbours.h"
 #include "sim/fluid/particles.h"
@@ -41,10 +48,10 @@ struct SolveResult {
 // the new positions). `dt` is the step the error measure refers to. Boundary velocities are the
 // boundary's sorted_velocity.
 SolveResult divergence_solve(const FluidSolverParams& params, const Neighbourhoods& nb, const Boundary& boundary,
-                             double dt, Particles& p);
+                             double dt, Particles& p, WallPressure* walls);
 
 // Corrects the predicted velocities so the density after advecting by dt is rho0.
 SolveResult density_solve(const FluidSolverParams& params, const Neighbourhoods& nb, const Boundary& boundary,
-                          double dt, Particles& p);
+                          double dt, Particles& p, WallPressure* walls);
 
 }  // namespace spume::fluid

@@ -108,6 +108,7 @@ void FluidSolver::update_neighbourhoods() {
   grid_.build(particles_.x, kernel_.h);
   particles_.reorder(grid_.sorted_to_original());
   fluid::build_neighbourhoods(grid_, boundary_, kernel_, volume_, particles_, neighbourhoods_);
+  if (walls_ptr()) walls_.build(neighbourhoods_, boundary_, kernel_, particles_, params_.gravity);
 }
 
 void FluidSolver::advance_to(double t, const std::function<void()>& after_step) {
@@ -131,11 +132,11 @@ double FluidSolver::step_to(double target) {
   // dt except through the error measure, so the previous step size is used.
   if (params_.divergence_solve) {
     StageTimer timer(seconds[size_t(FluidStage::Divergence)]);
-    const fluid::SolveResult r = fluid::divergence_solve(params_, neighbourhoods_, boundary_, dt_prev_, p);
+    const fluid::SolveResult r = fluid::divergence_solve(params_, neighbourhoods_, boundary_, dt_prev_, p, walls_ptr());
     divergence_iterations_ += uint64_t(r.iterations);
     stats_.divergence_error = r.error;
     stats_.divergence_unconverged += r.converged ? 0 : 1;
-    if (coupled) fluid::add_pressure_impulse(neighbourhoods_, boundary_, coupling_, particle_mass, dt_prev_, p, loads_);
+    if (coupled) fluid::add_pressure_impulse(neighbourhoods_, boundary_, walls_ptr(), coupling_, particle_mass, dt_prev_, p, loads_);
   }
 
   double dt;
@@ -159,13 +160,13 @@ double FluidSolver::step_to(double target) {
       for (size_t i = b; i < e; ++i) p.v[i] += fdt * p.accel[i];
     });
     if (boundary_.any_moving) fluid::set_boundary_velocity(boundary_, step_placements(time_, t_end));
-    const fluid::SolveResult r = fluid::density_solve(params_, neighbourhoods_, boundary_, dt, p);
+    const fluid::SolveResult r = fluid::density_solve(params_, neighbourhoods_, boundary_, dt, p, walls_ptr());
     density_iterations_ += uint64_t(r.iterations);
     density_error = r.error;
     stats_.density_error = r.error;
     stats_.max_density_error = std::max(stats_.max_density_error, r.error);
     stats_.density_unconverged += r.converged ? 0 : 1;
-    if (coupled) fluid::add_pressure_impulse(neighbourhoods_, boundary_, coupling_, particle_mass, dt, p, loads_);
+    if (coupled) fluid::add_pressure_impulse(neighbourhoods_, boundary_, walls_ptr(), coupling_, particle_mass, dt, p, loads_);
   }
 
   // Advect, move the solids, and keep every particle in free space.

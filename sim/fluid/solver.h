@@ -41,6 +41,7 @@
 #include "sim/fluid/coupling.h"
 #include "sim/fluid/fluid_params.h"
 #include "sim/fluid/neighbours.h"
+#include "sim/fluid/boundary_pressure.h"
 #include "sim/fluid/particles.h"
 #include "sim/fluid/restart_state.h"
 #include "sim/fluid/rigid_bodies.h"
@@ -119,6 +120,8 @@ class FluidSolver {
   std::vector<float> body_radius_;  // farthest point from the centre, per body, m
   NeighbourGrid grid_;
   fluid::Neighbourhoods neighbourhoods_;
+  fluid::WallPressure walls_;
+  fluid::WallPressure* walls_ptr() { return params_.extrapolate_wall_pressure ? &walls_ : nullptr; }
   fluid::BlowUpLimits limits_;
   double time_ = 0.0;
   double dt_prev_;

@@ -129,10 +129,15 @@ inline constexpr KeySpec push_out_skin{.path = "fluid.solver.push_out_skin", .un
                                        .hi = 1, .lo_bound = Closed, .hi_bound = Closed,
                                        .doc = "a particle found inside a solid goes this far outside it (more "
                                               "adds energy)"};
+inline constexpr KeySpec wall_pressure{.path = "fluid.solver.wall_pressure", .type = Choice,
+                                       .choices = "own|extrapolated",
+                                       .doc = "the pressure a wall pushes back with: each fluid particle's own "
+                                              "(Akinci et al. 2012), or the fluid's beside it plus the "
+                                              "hydrostatic rise (Adami et al. 2012: deep water settles calmer; see the README)"};
 inline constexpr auto all = std::to_array<const KeySpec*>(
     {&viscosity, &boundary_viscosity, &xsph, &cfl, &min_dt, &max_dt, &density_tolerance, &min_density_iterations,
      &max_density_iterations, &divergence_solve, &divergence_tolerance, &min_divergence_iterations,
-     &max_divergence_iterations, &warm_start, &boundary_spacing, &push_out_skin});
+     &max_divergence_iterations, &warm_start, &boundary_spacing, &push_out_skin, &wall_pressure});
 }  // namespace solver
 
 namespace solids {
