@@ -12,7 +12,7 @@
 // side wall gets only its fluid half's share of the vertical pressure gradient that holds it against
 // gravity (a quarter in an edge), and with k_i alone a floor particle's own push cancels (pressure.h).
 // A moving wall's own acceleration, which [ARH12] subtracts from g, is left out: the rise spans less
-// than h, so a piston at the lighthouse's 0.7 g misses at most 0.7 g h of pressure (3 cm of water at
+// than h, so a piston at the lighthouse's 0.7 g misses at most 0.7 g h of pressure (2 cm of water at
 // r = 7.5 mm) against the ~30 cm of water at its foot.
 #include <cstdint>
 #include <vector>
