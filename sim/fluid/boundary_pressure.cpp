@@ -56,13 +56,11 @@ void WallPressure::extrapolate(const std::vector<float>& fluid_k, float rise_sca
     for (size_t s = lo; s < hi; ++s) {
       float kb = rise_scale * rise[s];
       for (uint32_t e = offset[s]; e < offset[s + 1]; ++e) kb += weight[e] * fluid_k[fluid[e]];
-      // The wall never pulls: its total stays >= 0. Clamping the total rather than each increment
-      // keeps the (negative) rise of a wall above the fluid, such as a floating body's underside,
-      // when the first increment beside it is small.
+      // The wall never pulls. The fluid's increments are >= 0, so only the first can come out
+      // negative, from the rise of a wall above the water; that part of the rise is dropped.
       const uint32_t b = sample[s];
-      const float now = std::max(total[b] + kb, 0.0f);
-      k[b] = now - total[b];
-      total[b] = now;
+      k[b] = std::max(kb, 0.0f);
+      total[b] += k[b];
     }
   });
 }

@@ -17,11 +17,11 @@
 // neighbourhood, sum_b V_b grad W_ib is about minus the fluid's sum, so a floor particle's own pressure
 // cancels on itself and only its neighbours' pressures move it (down). On a resting lattice the first
 // steps then let every other layer fall freely, a velocity field the density residual cannot see
-// (layers k +- 1 cancel in it), and a 20-layer pool churns at up to 1 m/s; extrapolated, 0.29 m/s (README,
+// (layers k +- 1 cancel in it), and a 20-layer pool churns at up to 1 m/s; extrapolated, 0.33 m/s (README,
 // Deep fluid against walls). Mirroring (k_b = k_i) fixes the floor but leaves a wall uniform in pressure
 // along it, so a particle at a side wall gets only its fluid half's share of the vertical gradient (a
 // quarter in an edge): edges then ran down at 0.9 m/s. The extrapolated form is not the default: with
-// it a floating box's draft falls 13% short of Archimedes' (6% with the own form), and where a solid
+// it a floating box's draft falls 12% short of Archimedes' (6% with the own form), and where a solid
 // cuts the starting lattice the doubled wall push flings the overlapping particles (README).
 //
 // Warm start ([BK17]; optional, off by default): each solve first applies half the previous

@@ -144,7 +144,7 @@ TEST(FluidHydrostatic, DeepPoolIsHeldWithinTwoSteps) {
 TEST(FluidHydrostatic, DeepPoolStaysNearlyStill) {
   // 0.5 s at 50 fps. A resting 0.8 m column has the velocity scale sqrt(g H) = 2.8 m/s; the lattice
   // rearranges as it settles, but no particle may reach 15% of that scale (0.42 m/s). Measured here:
-  // 0.29 m/s with the wall's pressure extrapolated, 0.98 m/s with each particle's own (the default;
+  // 0.33 m/s with the wall's pressure extrapolated, 0.98 m/s with each particle's own (the default;
   // edges and alternate layers running).
   FluidSolver solver = deep_pool(true);
   double fastest = 0.0;
