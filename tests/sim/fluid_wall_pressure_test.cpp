@@ -12,6 +12,7 @@
 #include "sim/fluid/boundary_pressure.h"
 #include "sim/fluid/neighbours.h"
 #include "sim/grid/neighbour_grid.h"
+#include "tests/support/test_fluids.h"
 
 namespace spume::fluid {
 namespace {
@@ -41,10 +42,8 @@ void build(PoolUnderLid& s) {
   lid.max = Vec3f(0.16f, 0.115f, 0.16f);
   s.boundary = sample_boundary(SolidSet({tank, lid}), 2.0f * kRadius, kSupport);
   place_boundary(s.boundary, std::vector<SolidPlacement>(2), true);
-  std::vector<Vec3f> x;
-  for (int k = 0; k < 3; ++k)
-    for (int j = 0; j < 3; ++j)
-      for (int i = 0; i < 3; ++i) x.emplace_back(0.08f + 0.02f * i, 0.01f + 0.02f * j, 0.08f + 0.02f * k);
+  const std::vector<Vec3f> x = testing::lattice(Vec3f(0.08f, 0.01f, 0.08f), Vec3f(0.12f, 0.05f, 0.12f), 2.0f * kRadius);
+  ASSERT_EQ(x.size(), 27u);
   s.particles.resize(x.size());
   s.particles.x = x;
   for (size_t i = 0; i < x.size(); ++i) s.particles.v[i] = Vec3f::Zero(), s.particles.id[i] = uint32_t(i);
