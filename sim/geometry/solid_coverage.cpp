@@ -242,7 +242,9 @@ CoverageBounds solid_coverage_bounds(const SolidSet& solids, const Vec3f& p, flo
   int faces = 0;
   bool complex = false;
   Face face{};
-  for (const Solid& s : solids.solids()) {
+  for (size_t i = 0; i < solids.solids().size(); ++i) {
+    if (solids.far_from(i, p, h)) continue;
+    const Solid& s = solids.solids()[i];
     const Near what = classify_solid(s, p, h, face);
     if (what == Near::Nothing) continue;
     if (what == Near::OneFace) {
@@ -285,7 +287,9 @@ SolidCoverage solid_coverage(const SolidSet& solids, const Vec3f& p, float h, bo
   int faces = 0;
   bool complex = false;
   NearSolids near;
-  for (const Solid& s : solids.solids()) {
+  for (size_t i = 0; i < solids.solids().size(); ++i) {
+    if (solids.far_from(i, p, h)) continue;
+    const Solid& s = solids.solids()[i];
     const Near what = classify_solid(s, p, h, face);
     if (what == Near::Nothing) continue;
     if (near.count < near.solid.size()) near.solid[near.count++] = &s;

@@ -183,6 +183,31 @@ Vec3f Solid::velocity_at(const Vec3f& p) const {
   return velocity + angular_velocity.cross(p - centre());
 }
 
+SolidSet::SolidSet(std::vector<Solid> solids) : solids_(std::move(solids)) { bound(); }
+
+void SolidSet::bound() {
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  bounds_.resize(solids_.size());
+  for (size_t i = 0; i < solids_.size(); ++i) {
+    const Solid& s = solids_[i];
+    Aabb& b = bounds_[i];
+    if (s.kind == Solid::Kind::Tank) {
+      b.min = Vec3f::Constant(-kInf), b.max = Vec3f::Constant(kInf);
+      continue;
+    }
+    Vec3f centre = s.centre(), extent = Vec3f::Constant(s.radius);
+    if (s.kind == Solid::Kind::Box) {
+      const Vec3f half = 0.5f * (s.max - s.min);
+      extent = s.rotated() ? Vec3f(s.orientation.toRotationMatrix().cwiseAbs() * half) : half;
+    }
+    // Margins: the exact tests round by a few ulps of the coordinates (2e-6 of them is 16 ulps), and a
+    // quaternion up to 1e-4 off unit length (what validate() allows) turns a point up to 2e-4 of its
+    // distance from the centre off (1e-3 of the half diagonal).
+    const float pad = 1e-3f * extent.norm() + 2e-6f * (centre.cwiseAbs().maxCoeff() + extent.maxCoeff());
+    b.min = centre - extent - Vec3f::Constant(pad), b.max = centre + extent + Vec3f::Constant(pad);
+  }
+}
+
 bool SolidSet::any_moving() const {
   return std::any_of(solids_.begin(), solids_.end(),
                      [](const Solid& s) { return s.motion.moving() || s.dynamics.enabled; });
@@ -227,6 +252,7 @@ SolidSet SolidSet::posed(const std::vector<BodyPose>& poses) const {
     s.velocity = pose.velocity;
     s.angular_velocity = pose.angular_velocity;
   }
+  out.bound();
   return out;
 }
 
@@ -247,12 +273,14 @@ SolidSet SolidSet::at_time(double t) const {
 }
 
 bool SolidSet::inside(const Vec3f& p) const {
-  return std::any_of(solids_.begin(), solids_.end(), [&](const Solid& s) { return contains(s, p); });
+  for (size_t i = 0; i < solids_.size(); ++i)
+    if (!far_from(i, p, 0.0f) && contains(solids_[i], p)) return true;
+  return false;
 }
 
 bool SolidSet::inside_other_than(const Vec3f& p, const Solid& skip) const {
-  for (const Solid& s : solids_)
-    if (&s != &skip && contains(s, p)) return true;
+  for (size_t i = 0; i < solids_.size(); ++i)
+    if (&solids_[i] != &skip && !far_from(i, p, 0.0f) && contains(solids_[i], p)) return true;
   return false;
 }
 
@@ -329,7 +357,9 @@ bool SolidSet::push_out(Vec3f& p, Vec3f& v, float skin) const {
   for (int pass = 0; pass < kPasses; ++pass) {
     const bool moved_before = moved;
     moved = false;
-    for (const Solid& s : solids_) {
+    for (size_t i = 0; i < solids_.size(); ++i) {
+      if (far_from(i, p, 0.0f)) continue;  // not inside it
+      const Solid& s = solids_[i];
       solid = &s;
       switch (s.kind) {
         case Solid::Kind::Tank: {

@@ -96,7 +96,7 @@ struct Solid {
 class SolidSet {
  public:
   SolidSet() = default;
-  explicit SolidSet(std::vector<Solid> solids) : solids_(std::move(solids)) {}
+  explicit SolidSet(std::vector<Solid> solids);
   bool empty() const { return solids_.empty(); }
   const std::vector<Solid>& solids() const { return solids_; }
   bool any_moving() const;   // a kinematic motion or a dynamic body
@@ -136,13 +136,27 @@ class SolidSet {
   // True when p is inside a solid (or outside a tank's walls): push_out would move it.
   bool inside(const Vec3f& p) const;
 
+  // Whether p lies more than `reach` (>= 0) outside solid i's bounding box: then no ball of radius
+  // `reach` around p meets that solid, and the exact tests can be skipped. A broad phase for the
+  // per-particle loops, where most particles are far from most solids. The boxes are widened beyond
+  // the rounding of the exact tests (and a rotation's quaternion off unit length by up to 1e-4), so
+  // skipping a solid it calls far never changes a result. Never true for a tank (free space inside).
+  bool far_from(size_t i, const Vec3f& p, float reach) const {
+    const Aabb& b = bounds_[i];
+    const float r = reach * 1.001f;
+    return p.x() < b.min.x() - r || p.y() < b.min.y() - r || p.z() < b.min.z() - r || p.x() > b.max.x() + r ||
+           p.y() > b.max.y() + r || p.z() > b.max.z() + r;
+  }
+
  private:
+  void bound();  // bounds_ from solids_
   bool inside_other_than(const Vec3f& p, const Solid& skip) const;
   // If p is inside box s: the face to leave by (outward normal, depth of p below it), the shallowest
   // one whose exit point (plus skin) is not inside another solid.
   bool box_exit(const Solid& s, const Vec3f& p, float skin, Vec3f& normal, float& depth) const;
 
   std::vector<Solid> solids_;
+  std::vector<Aabb> bounds_;  // per solid, widened (far_from); infinite for tanks
 };
 
 }  // namespace spume
