@@ -1,7 +1,5 @@
 #include "sim/fluid/restart_state.h"
 
-#include <zlib.h>
-
 #include <bit>
 #include <cmath>
 #include <cstring>

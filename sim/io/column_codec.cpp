@@ -1,7 +1,6 @@
 #include "sim/io/column_codec.h"
 
 #include <blosc.h>
-#include <zlib.h>
 
 #include <algorithm>
 #include <cstring>
@@ -42,19 +41,6 @@ void CacheBytes::append(const void* data, size_t bytes) {
   const size_t at = size_;
   resize(size_ + bytes);
   if (bytes > 0) std::memcpy(buffer_.data() + at, data, bytes);
-}
-
-uint32_t parallel_crc32(const void* data, size_t bytes) {
-  constexpr size_t kPiece = size_t(4) << 20;
-  const size_t pieces = (bytes + kPiece - 1) / kPiece;
-  std::vector<uLong> crc(pieces);
-  const Bytef* p = static_cast<const Bytef*>(data);
-  parallel_for(pieces, 1, [&](size_t begin, size_t end) {
-    for (size_t c = begin; c < end; ++c) crc[c] = crc32_z(0, p + c * kPiece, std::min(kPiece, bytes - c * kPiece));
-  });
-  uLong all = crc32_z(0, nullptr, 0);
-  for (size_t c = 0; c < pieces; ++c) all = crc32_combine(all, crc[c], z_off_t(std::min(kPiece, bytes - c * kPiece)));
-  return uint32_t(all);
 }
 
 size_t column_bound(size_t bytes) { return 16 + bytes + chunk_count(bytes) * BLOSC_MAX_OVERHEAD; }

@@ -26,6 +26,7 @@ class CacheBytes {
     append(&v, sizeof v);  // little-endian host (spume_cache.cpp asserts it)
   }
   char* data() { return buffer_.data(); }
+  const char* data() const { return buffer_.data(); }
   size_t size() const { return size_; }
   std::string_view view() const { return {buffer_.data(), size_}; }
   void resize(size_t bytes);  // within the reserved capacity, or growing it
@@ -34,10 +35,6 @@ class CacheBytes {
   HugeBuffer<char> buffer_;
   size_t size_ = 0, capacity_ = 0;
 };
-
-// CRC-32 (zlib's) of `bytes` bytes, the same value as one serial pass: fixed 4 MiB pieces in
-// parallel, joined with crc32_combine.
-uint32_t parallel_crc32(const void* data, size_t bytes);
 
 // The most a column of `bytes` raw bytes can take stored, its 16-byte prefix included.
 size_t column_bound(size_t bytes);

@@ -7,16 +7,10 @@
 #include <string>
 #include <vector>
 
-#include <zlib.h>
-
 #include "sim/core/atomic_file.h"
+#include "sim/io/crc32.h"
 
 namespace spume {
-
-inline uint32_t crc32_update(uint32_t crc, const void* data, size_t bytes) {
-  return uint32_t(crc32_z(crc, static_cast<const Bytef*>(data), bytes));
-}
-inline uint32_t crc32_start() { return uint32_t(crc32_z(0, nullptr, 0)); }
 
 template <typename... Arrays>
 void write_crc_file(const std::filesystem::path& path, const std::string& header, const Arrays&... arrays) {

@@ -1,7 +1,5 @@
 #include "sim/io/spume_cache.h"
 
-#include <zlib.h>
-
 #include <algorithm>
 #include <bit>
 #include <cctype>
@@ -319,9 +317,14 @@ FluidCacheHeader peek_fluid_cache(const std::filesystem::path& path) {
 }
 
 void write_diffuse_cache(const std::filesystem::path& path, const DiffuseFrame& frame, double position_step) {
-  frame.validate(path.string());
+  const CacheBytes bytes = encode_diffuse_cache(frame, position_step, path.string());
+  write_file_atomically(path, [&](std::ostream& file) { file.write(bytes.data(), std::streamsize(bytes.size())); });
+}
+
+CacheBytes encode_diffuse_cache(const DiffuseFrame& frame, double position_step, const std::string& where) {
+  frame.validate(where);
   if (!std::isfinite(position_step) || position_step < 0.0)
-    fail(path.string(), ": position step ", position_step, " m; must be finite and >= 0 (0: exact)");
+    fail(where, ": position step ", position_step, " m; must be finite and >= 0 (0: exact)");
   const std::optional<QuantizedDiffuse> q =
       position_step > 0.0 ? quantize_diffuse(frame, position_step) : std::nullopt;
   const DiffuseQuantization quantization = q ? q->q : DiffuseQuantization{};
@@ -359,7 +362,7 @@ void write_diffuse_cache(const std::filesystem::path& path, const DiffuseFrame& 
   }
   const uint32_t crc = parallel_crc32(out.data(), out.size());
   out.store(crc);
-  write_file_atomically(path, [&](std::ostream& file) { file.write(out.data(), std::streamsize(out.size())); });
+  return out;
 }
 
 DiffuseFrame read_diffuse_cache(const std::filesystem::path& path, DiffuseCacheHeader* header) {

@@ -40,8 +40,10 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <string>
 
 #include "sim/core/frames.h"
+#include "sim/io/column_codec.h"
 #include "sim/io/diffuse_quantized.h"
 
 namespace spume {
@@ -82,6 +84,9 @@ FluidCacheHeader peek_fluid_cache(const std::filesystem::path& path);
 // (the pipeline uses the fluid particle radius / kPositionStepsPerRadius), sorted by cell. A frame too
 // large for the quantization grid (diffuse_quantized.h) is written exactly.
 void write_diffuse_cache(const std::filesystem::path& path, const DiffuseFrame& frame, double position_step = 0.0);
+// The bytes write_diffuse_cache writes (CRC included), so that a caller can encode the frame while it
+// holds it and hand the writing to another thread; `where` names the file in errors.
+CacheBytes encode_diffuse_cache(const DiffuseFrame& frame, double position_step, const std::string& where);
 // Reads versions 1 and 2; any other version is refused naming the file and what to do.
 DiffuseFrame read_diffuse_cache(const std::filesystem::path& path, DiffuseCacheHeader* header = nullptr);
 DiffuseCacheHeader peek_diffuse_cache(const std::filesystem::path& path);

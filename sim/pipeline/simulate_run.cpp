@@ -16,6 +16,7 @@
 #include "sim/core/progress.h"
 #include "sim/core/stopwatch.h"
 #include "sim/diffuse/simulator.h"
+#include "sim/io/background_writer.h"
 #include "sim/io/bgeo.h"
 #include "sim/io/cache_layout.h"
 #include "sim/io/spume_cache.h"
@@ -240,6 +241,7 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
   size_t most_filled = 0;
   bool warned_band_skip = false;
   float least_density = 0.0f, most_density = 0.0f;  // fluid.particles = flip: the measured density ratios
+  BackgroundWriter writer;
   for (size_t k = resume; k < frames.size(); ++k) {
     std::optional<FluidFrame> next;
     if (k + 1 < frames.size())
@@ -247,10 +249,17 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
     double io_ms = 0.0;
     auto write_frame = [&](const DiffuseFrame& particles, const FrameStats& stats) {
       if (k == resume && resume > 0) return;  // the frame continued from is on disk already
+      // Encoded here, while the frame is ours; written on the writer's thread while the next frame is
+      // simulated. io_ms: encoding, plus waiting for the previous frame's file.
       const Stopwatch t0;
-      write_diffuse_cache(diffuse_cache_path(summary.out_dir, particles.index), particles,
-                          scene.fluid.particle_radius / kPositionStepsPerRadius);
-      if (k + 1 == frames.size()) write_diffuse_cache(diffuse_restart_path(summary.out_dir, particles.index), particles);
+      auto write_cache = [&](const std::filesystem::path& path, double position_step) {
+        writer.write(path, encode_diffuse_cache(particles, position_step, path.string()));
+      };
+      write_cache(diffuse_cache_path(summary.out_dir, particles.index), scene.fluid.particle_radius / kPositionStepsPerRadius);
+      if (k + 1 == frames.size()) {
+        write_cache(diffuse_restart_path(summary.out_dir, particles.index), 0.0);
+        writer.wait();  // the last frame's files are on disk before its row is written
+      }
       if (scene.write_bgeo)
         write_bgeo(diffuse_bgeo_path(summary.out_dir, particles.index), particles);
       io_ms = t0.milliseconds();
@@ -333,6 +342,7 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
   if (unpaired_frames > 1)
     progress.message(str("  (", unpaired_frames, " of ", frames.size() - 1 - resume,
                          " frame intervals left their particles unpaired)"));
+  writer.wait();  // every frame's cache on disk before the stage is marked finished
   write_file_atomically(summary.out_dir / "stats.csv", [&](std::ostream& out) { out << stats_text; });
   remove_diffuse_restarts(summary.out_dir, frames.back());
   write_stage_record(cache_dir, wanted);
