@@ -8,6 +8,7 @@
 #include <random>
 
 #include "sim/geometry/solids.h"
+#include "tests/support/solid_shapes.h"
 
 namespace spume {
 namespace {
@@ -41,17 +42,7 @@ Vec3d point_beyond(const Solid& s, double gap, std::mt19937& rng) {
 }
 
 Solid box_at(const Vec3f& centre, const Vec3f& half, const Quatf& orientation) {
-  Solid s;
-  s.kind = Solid::Kind::Box;
-  s.min = centre - half, s.max = centre + half, s.orientation = orientation;
-  return s;
-}
-
-Solid sphere_at(const Vec3f& centre, float radius) {
-  Solid s;
-  s.kind = Solid::Kind::Sphere;
-  s.center = centre, s.radius = radius;
-  return s;
+  return testing::box_solid(centre - half, centre + half, orientation);
 }
 
 TEST(SolidBroadPhase, NeverCallsASolidFarThatABallOfTheReachMeets) {
@@ -64,7 +55,7 @@ TEST(SolidBroadPhase, NeverCallsASolidFarThatABallOfTheReachMeets) {
   for (const Vec3f& origin : {Vec3f(0, 0, 0), Vec3f(1000, -500, 2000)}) {
     const SolidSet solids({box_at(origin + Vec3f(0.3f, 0.2f, 0.1f), Vec3f(0.12f, 0.4f, 0.05f), Quatf::Identity()),
                            box_at(origin + Vec3f(-1, 0.5f, 0), Vec3f(0.3f, 0.1f, 0.2f), tilted),
-                           sphere_at(origin + Vec3f(2, 0, 0), 0.45f)});
+                           testing::sphere_solid(origin + Vec3f(2, 0, 0), 0.45f)});
     for (size_t i = 0; i < solids.solids().size(); ++i)
       for (float reach : {0.0f, 1e-3f, 0.03f}) {
         for (int k = 0; k < 20000; ++k) {
@@ -88,12 +79,9 @@ TEST(SolidBroadPhase, NeverCallsASolidFarThatABallOfTheReachMeets) {
 }
 
 TEST(SolidBroadPhase, SkipsWhatIsWellClearAndNeverATank) {
-  const Solid box = box_at(Vec3f(0, 0, 0), Vec3f(0.5f, 0.5f, 0.5f), Quatf::Identity());
-  const Solid ball = sphere_at(Vec3f(3, 0, 0), 0.5f);
-  Solid tank;
-  tank.kind = Solid::Kind::Tank;
-  tank.min = Vec3f(-5, -5, -5), tank.max = Vec3f(5, 5, 5);
-  const SolidSet solids({box, ball, tank});
+  const Solid cube = box_at(Vec3f(0, 0, 0), Vec3f(0.5f, 0.5f, 0.5f), Quatf::Identity());
+  const SolidSet solids({cube, testing::sphere_solid(Vec3f(3, 0, 0), 0.5f),
+                         testing::tank_solid(Vec3f(-5, -5, -5), Vec3f(5, 5, 5))});
   const float h = 0.03f;
   // 1.1 h beyond a face (the bounds are widened by 1e-3 of the box's half diagonal and 1e-3 of h).
   EXPECT_TRUE(solids.far_from(0, Vec3f(0.5f + 1.1f * h, 0, 0), h));
@@ -105,7 +93,7 @@ TEST(SolidBroadPhase, SkipsWhatIsWellClearAndNeverATank) {
   // A tank holds its free space inside: never skipped, wherever the point.
   for (const Vec3f& p : {Vec3f(0, 0, 0), Vec3f(100, 0, 0), Vec3f(-4.99f, 0, 0)}) EXPECT_FALSE(solids.far_from(2, p, h));
   // Poses move the bounds with the body.
-  Solid body = box;
+  Solid body = cube;
   body.dynamics.enabled = true, body.dynamics.density = 500.0f;
   const SolidSet bodies({body});
   BodyPose pose;

@@ -8,32 +8,16 @@
 
 #include "sim/diffuse/kernels.h"
 #include "sim/geometry/solid_coverage.h"
+#include "tests/support/solid_shapes.h"
 
 namespace spume {
 namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
 
-Solid tank(const Vec3f& lo, const Vec3f& hi, bool open_top = true) {
-  Solid s;
-  s.kind = Solid::Kind::Tank;
-  s.min = lo, s.max = hi, s.open_top = open_top;
-  return s;
-}
-
-Solid box(const Vec3f& lo, const Vec3f& hi) {
-  Solid s;
-  s.kind = Solid::Kind::Box;
-  s.min = lo, s.max = hi;
-  return s;
-}
-
-Solid sphere(const Vec3f& c, float radius) {
-  Solid s;
-  s.kind = Solid::Kind::Sphere;
-  s.center = c, s.radius = radius;
-  return s;
-}
+Solid tank(const Vec3f& lo, const Vec3f& hi, bool open_top = true) { return testing::tank_solid(lo, hi, open_top); }
+Solid box(const Vec3f& lo, const Vec3f& hi) { return testing::box_solid(lo, hi); }
+Solid sphere(const Vec3f& c, float radius) { return testing::sphere_solid(c, radius); }
 
 // Share of the ball of radius h around p inside the solids, by 400k uniform points (fixed seed):
 // standard error below 0.0008.
