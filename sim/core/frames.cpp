@@ -1,8 +1,10 @@
 #include "sim/core/frames.h"
 
 #include <algorithm>
+#include <atomic>
 
 #include "sim/core/error.h"
+#include "sim/core/parallel.h"
 
 namespace spume {
 
@@ -65,12 +67,27 @@ void DiffuseFrame::validate(const std::string& where) const {
   if (ids.size() != n || velocities.size() != n || lifetimes.size() != n || types.size() != n)
     fail(where, ": diffuse arrays disagree in length (positions ", n, ", ids ", ids.size(), ", velocities ",
          velocities.size(), ", lifetimes ", lifetimes.size(), ", types ", types.size(), ")");
-  for (size_t i = 0; i < n; ++i) {
-    if (!finite(positions[i]) || !finite(velocities[i]) || !std::isfinite(lifetimes[i]))
-      fail(where, ": diffuse particle ", i, " (id ", ids[i], ") has a non-finite value");
-    if (uint8_t(types[i]) >= kDiffuseTypeCount)
-      fail(where, ": diffuse particle ", i, " has type ", int(types[i]), "; allowed 0 spray, 1 foam, 2 bubble");
-  }
+  auto bad = [&](size_t i) {
+    return !finite(positions[i]) || !finite(velocities[i]) || !std::isfinite(lifetimes[i]) ||
+           uint8_t(types[i]) >= kDiffuseTypeCount;
+  };
+  // In parallel (every cache write checks its frame: 50 ms at 14M on one core), reporting the first
+  // bad particle whatever the split: each chunk offers its first, the smallest wins.
+  std::atomic<size_t> first{n};
+  parallel_for(n, 1 << 16, [&](size_t b, size_t e) {
+    for (size_t i = b; i < e && i < first.load(std::memory_order_relaxed); ++i)
+      if (bad(i)) {
+        size_t seen = first.load();
+        while (i < seen && !first.compare_exchange_weak(seen, i)) {
+        }
+        return;
+      }
+  });
+  const size_t i = first.load();
+  if (i == n) return;
+  if (uint8_t(types[i]) >= kDiffuseTypeCount && finite(positions[i]) && finite(velocities[i]) && std::isfinite(lifetimes[i]))
+    fail(where, ": diffuse particle ", i, " has type ", int(types[i]), "; allowed 0 spray, 1 foam, 2 bubble");
+  fail(where, ": diffuse particle ", i, " (id ", ids[i], ") has a non-finite value");
 }
 
 }  // namespace spume

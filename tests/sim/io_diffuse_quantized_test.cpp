@@ -159,6 +159,21 @@ TEST(DiffuseQuantized, NonFiniteValuesAreRefusedOnWrite) {
   EXPECT_NE(msg.find("position step -1"), std::string::npos) << msg;
 }
 
+TEST(DiffuseQuantized, TheFirstBadParticleIsNamedWhateverTheThreads) {
+  // Bad particles in several of the check's parallel chunks (65,536 each): the message names the
+  // first, a non-finite value before a bad type.
+  DiffuseFrame d = random_frame(300'000, 10);
+  d.lifetimes[250'000] = std::numeric_limits<float>::quiet_NaN();
+  d.types[140'001] = DiffuseType(7);
+  d.positions[140'000].x() = std::numeric_limits<float>::infinity();
+  const std::string msg = error_of([&] { d.validate("frame"); });
+  EXPECT_NE(msg.find("particle 140000 "), std::string::npos) << msg;
+  EXPECT_NE(msg.find("non-finite"), std::string::npos) << msg;
+  d.positions[140'000].x() = 0.0f;
+  const std::string type_msg = error_of([&] { d.validate("frame"); });
+  EXPECT_NE(type_msg.find("particle 140001 has type 7"), std::string::npos) << type_msg;
+}
+
 TEST(DiffuseQuantized, AFrameTooWideForTheGridIsStoredExactly) {
   // 2^31 steps of r / 64 at r = 1 cm is 335 km: a particle beyond that cannot be quantized in 32 bits.
   TempDir dir;
