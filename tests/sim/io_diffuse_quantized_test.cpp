@@ -160,8 +160,8 @@ TEST(DiffuseQuantized, NonFiniteValuesAreRefusedOnWrite) {
 }
 
 TEST(DiffuseQuantized, TheFirstBadParticleIsNamedWhateverTheThreads) {
-  // Bad particles in several of the check's parallel chunks (65,536 each): the message names the
-  // first, a non-finite value before a bad type.
+  // Bad particles far apart in the frame, which the check splits among threads in runs of at least
+  // 65,536: the message names the first, a non-finite value before a bad type.
   DiffuseFrame d = random_frame(300'000, 10);
   d.lifetimes[250'000] = std::numeric_limits<float>::quiet_NaN();
   d.types[140'001] = DiffuseType(7);
