@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "sim/fluid/solver.h"
+#include "tests/support/solid_shapes.h"
 
 namespace spume {
 namespace {
@@ -34,10 +35,7 @@ TEST(FluidHydrostatic, TankAtRestKeepsDensityAndStaysStill) {
   // 0.4 x 0.4 x 0.2 m of water (20 x 20 x 10 = 4000 particles, r = 1 cm) in an open tank.
   FluidSolverParams p;
   p.particle_radius = 0.01f;
-  Solid tank;
-  tank.kind = Solid::Kind::Tank;
-  tank.min = Vec3f(0, 0, 0);
-  tank.max = Vec3f(0.4f, 0.6f, 0.2f);
+  const Solid tank = testing::tank_solid(Vec3f(0, 0, 0), Vec3f(0.4f, 0.6f, 0.2f));
   const FluidBlock water{Vec3f(0, 0, 0), Vec3f(0.4f, 0.4f, 0.2f)};
   FluidSolver solver(p, {water}, SolidSet({tank}));
   ASSERT_EQ(solver.size(), 4000u);
@@ -98,10 +96,7 @@ FluidSolver deep_pool(bool extrapolate_wall_pressure) {
   FluidSolverParams p;
   p.particle_radius = 0.02f;
   p.extrapolate_wall_pressure = extrapolate_wall_pressure;
-  Solid tank;
-  tank.kind = Solid::Kind::Tank;
-  tank.min = Vec3f(0, 0, 0);
-  tank.max = Vec3f(0.8f, 1.6f, 0.8f);
+  const Solid tank = testing::tank_solid(Vec3f(0, 0, 0), Vec3f(0.8f, 1.6f, 0.8f));
   return FluidSolver(p, {FluidBlock{Vec3f(0, 0, 0), Vec3f(0.8f, 0.8f, 0.8f)}}, SolidSet({tank}));
 }
 

@@ -13,6 +13,7 @@
 #include "sim/fluid/neighbours.h"
 #include "sim/grid/neighbour_grid.h"
 #include "tests/support/test_fluids.h"
+#include "tests/support/solid_shapes.h"
 
 namespace spume::fluid {
 namespace {
@@ -32,14 +33,8 @@ struct PoolUnderLid {
 // A 3 x 3 x 3 block of fluid on its lattice resting on a tank floor, with a box lid 1.5 r above its
 // surface: some wall particles lie below the fluid, some above it.
 void build(PoolUnderLid& s) {
-  Solid tank;
-  tank.kind = Solid::Kind::Tank;
-  tank.min = Vec3f(0, 0, 0);
-  tank.max = Vec3f(0.2f, 0.2f, 0.2f);
-  Solid lid;
-  lid.kind = Solid::Kind::Box;
-  lid.min = Vec3f(0.04f, 0.075f, 0.04f);
-  lid.max = Vec3f(0.16f, 0.115f, 0.16f);
+  const Solid tank = testing::tank_solid(Vec3f(0, 0, 0), Vec3f(0.2f, 0.2f, 0.2f));
+  const Solid lid = testing::box_solid(Vec3f(0.04f, 0.075f, 0.04f), Vec3f(0.16f, 0.115f, 0.16f));
   s.boundary = sample_boundary(SolidSet({tank, lid}), 2.0f * kRadius, kSupport);
   place_boundary(s.boundary, std::vector<SolidPlacement>(2), true);
   const std::vector<Vec3f> x = testing::lattice(Vec3f(0.08f, 0.01f, 0.08f), Vec3f(0.12f, 0.05f, 0.12f), 2.0f * kRadius);
