@@ -62,6 +62,7 @@ void add_pressure_impulse(const Neighbourhoods& nb, const Boundary& boundary, co
   const float scale = float(double(particle_mass) * dt_s);
   sum_over_bodies(p.size(), bodies, loads.impulse, loads.angular_impulse, [&](size_t i, auto& add) {
     const float k = p.source[i];
+    if (!walls && k == 0.0f) return;  // nothing pushed this particle's walls
     for (uint32_t e = nb.boundary_offset[i]; e < nb.boundary_offset[i + 1]; ++e) {
       const Pair q = nb.boundary_pairs[e];
       const int body = bodies.body_of_solid[boundary.sorted_solid[q.j]];
