@@ -15,16 +15,9 @@
 #include <type_traits>
 #include <utility>
 
-namespace spume {
+#include "sim/core/huge_pages.h"
 
-// Asks for 2 MiB pages over the whole 2 MiB pages inside [p, p + bytes) (memory not yet touched, such as
-// a vector's after reserve()): advice only.
-inline void advise_huge_pages(void* p, size_t bytes) {
-  constexpr uintptr_t kHuge = uintptr_t(2) << 20;
-  const uintptr_t begin = (reinterpret_cast<uintptr_t>(p) + kHuge - 1) & ~(kHuge - 1);
-  const uintptr_t end = (reinterpret_cast<uintptr_t>(p) + bytes) & ~(kHuge - 1);
-  if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
-}
+namespace spume {
 
 // The pool behind HugeBuffer: freed blocks are kept (up to kScratchPoolBytes of blocks in all, the oldest
 // released first beyond that) and a request takes the smallest kept block that fits, when that block

@@ -1,0 +1,25 @@
+#pragma once
+// Transparent huge pages for large arrays. On a virtual machine a page fault is expensive: touching
+// fresh memory costs about 2.6 ms a MiB in 4 KiB pages on the machine this was measured on, 0.06 ms
+// a MiB in 2 MiB pages. Linux gives 2 MiB pages to memory advised so when THP runs in madvise mode
+// (Debian's default), and to all anonymous memory in "always" mode.
+#include <sys/mman.h>
+
+#include <cstddef>
+#include <cstdint>
+
+namespace spume {
+
+// Requests at least this large get the advice from operator new (allocation_budget.cpp).
+constexpr size_t kHugePageRequestBytes = size_t(4) << 20;
+
+// Asks for 2 MiB pages over the whole 2 MiB pages inside [p, p + bytes). Advice only, and only for
+// pages not yet touched (fresh memory, such as a large block just allocated); failure is harmless.
+inline void advise_huge_pages(void* p, size_t bytes) {
+  constexpr uintptr_t kHuge = uintptr_t(2) << 20;
+  const uintptr_t begin = (reinterpret_cast<uintptr_t>(p) + kHuge - 1) & ~(kHuge - 1);
+  const uintptr_t end = (reinterpret_cast<uintptr_t>(p) + bytes) & ~(kHuge - 1);
+  if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+}
+
+}  // namespace spume

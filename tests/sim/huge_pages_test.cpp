@@ -1,0 +1,75 @@
+// Large allocations are advised transparent huge pages (sim/core/huge_pages.h): checked against the
+// kernel's own account of the mapping (the "hg" flag of /proc/self/smaps), not against the code.
+#include <gtest/gtest.h>
+#include <sys/mman.h>
+
+#include <cstdint>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "sim/core/huge_pages.h"
+
+namespace spume {
+namespace {
+
+bool kernel_has_huge_pages() { return std::ifstream("/sys/kernel/mm/transparent_hugepage/enabled").good(); }
+
+// The VmFlags line of the mapping that holds address `a`; empty when no mapping holds it.
+std::string vm_flags_at(const void* a) {
+  const uintptr_t x = reinterpret_cast<uintptr_t>(a);
+  std::ifstream smaps("/proc/self/smaps");
+  std::string line;
+  bool inside = false;
+  while (std::getline(smaps, line)) {
+    uintptr_t begin = 0, end = 0;
+    char dash = 0;
+    std::istringstream range(line);
+    if (range >> std::hex >> begin >> dash >> end && dash == '-') {
+      inside = begin <= x && x < end;
+    } else if (inside && line.rfind("VmFlags:", 0) == 0) {
+      return line;
+    }
+  }
+  return {};
+}
+
+bool advised(const void* a) { return vm_flags_at(a).find(" hg") != std::string::npos; }
+
+constexpr size_t kMiB = size_t(1) << 20;
+
+TEST(HugePages, AdviceCoversTheWhole2MiBPagesInsideTheRangeAndNothingElse) {
+  if (!kernel_has_huge_pages()) GTEST_SKIP() << "no transparent huge pages in this kernel";
+  const size_t bytes = 16 * kMiB;
+  char* map = static_cast<char*>(mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0));
+  ASSERT_NE(map, MAP_FAILED);
+  // The range [1, 6) MiB past a 2 MiB boundary holds two whole 2 MiB pages, [2, 6) MiB; the
+  // partial ones at either end must stay as they were.
+  char* boundary = reinterpret_cast<char*>((reinterpret_cast<uintptr_t>(map) + 2 * kMiB - 1) & ~(2 * kMiB - 1));
+  advise_huge_pages(boundary + 1 * kMiB, 5 * kMiB);
+  EXPECT_FALSE(advised(boundary + 1 * kMiB + 4096));
+  EXPECT_TRUE(advised(boundary + 2 * kMiB));
+  EXPECT_TRUE(advised(boundary + 6 * kMiB - 1));
+  EXPECT_FALSE(advised(boundary + 6 * kMiB));
+  munmap(map, bytes);
+}
+
+TEST(HugePages, OperatorNewAdvisesLargeBlocks) {
+  if (!kernel_has_huge_pages()) GTEST_SKIP() << "no transparent huge pages in this kernel";
+  // 64 MiB: above glibc's largest mmap threshold, so the block is a mapping of its own.
+  std::vector<float> column;
+  column.reserve(16 * kMiB);
+  const char* middle = reinterpret_cast<const char*>(column.data()) + 32 * kMiB;
+  EXPECT_TRUE(advised(middle)) << vm_flags_at(middle);
+  // A plain mapping of the same size is not advised: the flag is the advice's, not the kernel's default.
+  const size_t bytes = 64 * kMiB;
+  void* map = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  ASSERT_NE(map, MAP_FAILED);
+  EXPECT_FALSE(advised(static_cast<char*>(map) + 32 * kMiB));
+  munmap(map, bytes);
+}
+
+}  // namespace
+}  // namespace spume
