@@ -31,13 +31,12 @@ bool AllocationBudget::take(size_t n) {
 
 // The replaceable allocation functions (the array and nothrow forms of libstdc++ call this one). Memory
 // comes from malloc, as libstdc++'s own operator new takes it, so its operator delete frees it. Large
-// blocks (a frame's columns: std::vector's, which every stage fills right away) are advised huge pages
-// first: on a virtual machine their page faults were a sixth of a 15M diffuse frame's time.
+// blocks are advised huge pages while a stage asks for it (sim/core/huge_pages.h).
 void* operator new(std::size_t n) {
   if (!spume::AllocationBudget::take(n)) throw std::bad_alloc();
   for (;;) {
     if (void* p = std::malloc(n ? n : 1)) {
-      if (n >= spume::kHugePageRequestBytes) spume::advise_huge_pages(p, n);
+      if (n >= spume::kHugePageRequestBytes && spume::HugePagesForLargeBlocks::active()) spume::advise_huge_pages(p, n);
       return p;
     }
     std::new_handler handler = std::get_new_handler();

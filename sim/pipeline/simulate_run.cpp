@@ -11,6 +11,7 @@
 #include "sim/pipeline/body_track_file.h"
 #include "sim/pipeline/cache_state.h"
 #include "sim/io/file_identity.h"
+#include "sim/core/huge_pages.h"
 #include "sim/core/atomic_file.h"
 #include "sim/core/error.h"
 #include "sim/core/progress.h"
@@ -203,6 +204,7 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
   }
   summary.why = options.force ? "--force" : match.why;
   remove_stage_record(cache_dir);
+  const HugePagesForLargeBlocks huge_pages;  // the frame's arrays grow with it: fresh memory every frame
 
   Progress progress("simulate " + scene.name, frames.size() - resume, options.quiet);
   if (resume > 0)
