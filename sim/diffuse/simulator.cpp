@@ -38,6 +38,11 @@ const SolidSet& DiffuseSimulator::solids_at(double t, SolidSet& slot) const {
   return slot;
 }
 
+const SolidClearance& DiffuseSimulator::clearance_of(const SolidSet& solids, SolidClearance& slot) {
+  if (!slot.built() || setup_.solids.any_moving()) slot = SolidClearance(solids, setup_.fluid.support_radius);
+  return slot;
+}
+
 void DiffuseSimulator::prepare_fluid(double t) {
   StageTimer timer(pending_, Stage::Grid);  // fluid preparation, reported with the grid
   step_params_ = setup_.params;
@@ -75,6 +80,7 @@ void DiffuseSimulator::classify(const FluidStepState& state, uint32_t step, bool
   solids_now_ = &solids;
   const bool count_solids = p.count_solids && !solids.empty();
   const float h = setup_.fluid.support_radius;
+  const SolidClearance* clearance = count_solids ? &clearance_of(solids, classify_clearance_) : nullptr;
   parallel_for(particles_.size(), 4096, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
       float count = samples_.neighbour_count[i];
@@ -85,7 +91,7 @@ void DiffuseSimulator::classify(const FluidStepState& state, uint32_t step, bool
       // dry wall adds nothing, a submerged floor a full neighbourhood, the waterline about half.
       // The type only grows with the count, so where both bounds on the covered share give the same
       // type the exact share is not needed (most particles near a box's edges).
-      if (count_solids && count > 0.0f) {
+      if (count_solids && count > 0.0f && !clearance->clear(particles_.positions[i])) {
         const Vec3f& x = particles_.positions[i];
         const CoverageBounds bounds = solid_coverage_bounds(solids, x, h);
         const float low = wet_wall_count(count, bounds.lo);
@@ -109,6 +115,7 @@ void DiffuseSimulator::step(const FluidStepState& state, uint32_t step, float dt
   const SolidSet& solids = solids_at(t_end, step_solids_);
   const float skin = 1e-4f * setup_.fluid.particle_radius;
   const bool limit = !setup_.domain.empty();
+  const SolidClearance& clearance = clearance_of(solids, step_clearance_);
 
   // Advect the existing particles (MODEL.md §4), keep them out of solids, dissolve foam (§5).
   alive_.resize(old_count);
@@ -134,8 +141,11 @@ void DiffuseSimulator::step(const FluidStepState& state, uint32_t step, float dt
             break;
           case DiffuseType::Bubble: advance_bubble(x, v, u, bubble); break;
         }
-        solids.stop_at_tank_walls(from, x, v, skin);
-        solids.push_out(x, v, skin);
+        // Ending where no solid is near, a step crossed no tank wall (it ends inside them all).
+        if (!clearance.clear(x)) {
+          solids.stop_at_tank_walls(from, x, v, skin);
+          solids.push_out(x, v, skin);
+        }
         if (alive && limit && !setup_.domain.contains(x)) alive = 2;
         alive_[i] = alive;
         dissolved_here += alive == 0, removed_here += alive == 2;
@@ -164,7 +174,8 @@ void DiffuseSimulator::step(const FluidStepState& state, uint32_t step, float dt
     if (!solids.empty())
       parallel_for(particles_.size() - old_count, 4096, [&](size_t b, size_t e) {
         for (size_t k = old_count + b; k < old_count + e; ++k)
-          solids.push_out(particles_.positions[k], particles_.velocities[k], skin);
+          if (!clearance.clear(particles_.positions[k]))
+            solids.push_out(particles_.positions[k], particles_.velocities[k], skin);
       });
   }
   pending_.generated += emitted.emitted;

@@ -18,6 +18,7 @@
 #include "sim/diffuse/potentials.h"
 #include "sim/grid/neighbour_grid.h"
 #include "sim/geometry/body_track.h"
+#include "sim/geometry/solid_clearance.h"
 
 namespace spume {
 
@@ -81,6 +82,9 @@ class DiffuseSimulator {
   void step(const FluidStepState& state, uint32_t step, float dt, double t_end);
   // The solids at time t: the set as given when nothing moves, else a snapshot kept in `slot`.
   const SolidSet& solids_at(double t, SolidSet& slot) const;
+  // Where `solids` (from solids_at) leave particles alone, within the support radius: built once when
+  // nothing moves, else for every snapshot.
+  const SolidClearance& clearance_of(const SolidSet& solids, SolidClearance& slot);
 
   DiffuseSetup setup_;
   DiffuseFrame particles_;
@@ -95,6 +99,7 @@ class DiffuseSimulator {
   DiffuseFrame spare_;
   EmissionBuffers emission_buffers_;
   SolidSet classify_solids_, step_solids_;
+  SolidClearance classify_clearance_, step_clearance_;
   FrameStats pending_;  // accumulates between frames
   const SolidSet* solids_now_ = nullptr;  // the solids at the time of the last classify()
   float particle_volume_;

@@ -95,27 +95,35 @@ class SegmentSet {
 
  private:
   float h_;
-  std::array<Interval, 64> parts_{};  // more solids than this within h of one point: the rest is ignored
+  // More solids than this within h of one point: the rest is ignored. Left uninitialised: only the
+  // first count_ are read, and the integral builds one set for each of its 256 directions.
+  std::array<Interval, 64> parts_;
   size_t count_ = 0;
 };
 
-// A box in its own frame: origin and direction turned into it.
-void to_box_frame(const Solid& s, const Vec3f& p, const Vec3f& u, Vec3f& o, Vec3f& d) {
-  if (!s.rotated()) {
-    o = p, d = u;
-    return;
-  }
-  const Vec3f c = s.centre();
-  const Quatf inv = s.orientation.conjugate();
-  o = c + inv * (p - c);
-  d = inv * u;
-}
+// A solid near the point integrated around, with what does not depend on the direction: for a box,
+// the point in the box's own frame and the rotation into it.
+struct NearSolid {
+  const Solid* solid = nullptr;
+  bool rotated = false;
+  Quatf to_box = Quatf::Identity();
+  Vec3f origin = Vec3f::Zero();  // p in the box's frame (p itself when not rotated)
 
-void add_solid_segments(const Solid& s, const Vec3f& p, const Vec3f& u, SegmentSet& segments) {
+  NearSolid() = default;
+  NearSolid(const Solid& s, const Vec3f& p) : solid(&s), rotated(s.kind == Solid::Kind::Box && s.rotated()), origin(p) {
+    if (!rotated) return;
+    const Vec3f c = s.centre();
+    to_box = s.orientation.conjugate();
+    origin = c + to_box * (p - c);
+  }
+};
+
+void add_solid_segments(const NearSolid& near, const Vec3f& p, const Vec3f& u, SegmentSet& segments) {
+  const Solid& s = *near.solid;
   switch (s.kind) {
     case Solid::Kind::Box: {
-      Vec3f o, d;
-      to_box_frame(s, p, u, o, d);
+      const Vec3f& o = near.origin;
+      const Vec3f d = near.rotated ? Vec3f(near.to_box * u) : u;
       Interval in{-kInf, kInf};
       for (int a = 0; a < 3; ++a) in = intersect(in, slab(o[a], d[a], s.min[a], s.max[a]));
       segments.add(in);
@@ -148,7 +156,7 @@ void add_solid_segments(const Solid& s, const Vec3f& p, const Vec3f& u, SegmentS
 
 // The solids within reach of the ball (a scene of many boxes has only a few near any point).
 struct NearSolids {
-  std::array<const Solid*, 32> solid{};
+  std::array<NearSolid, 32> solid;
   size_t count = 0;
 };
 
@@ -158,7 +166,7 @@ SolidCoverage integrate_directions(const NearSolids& near, const Vec3f& p, float
   Vec3d gradient = Vec3d::Zero();
   for (const Vec3f& u : directions()) {
     SegmentSet segments(h);
-    for (size_t k = 0; k < near.count; ++k) add_solid_segments(*near.solid[k], p, u, segments);
+    for (size_t k = 0; k < near.count; ++k) add_solid_segments(near.solid[k], p, u, segments);
     double v = 0.0, g = 0.0;
     segments.for_each_union([&](float a, float b) {
       v += (double(b) * b * b - double(a) * a * a) / 3.0;
@@ -292,7 +300,7 @@ SolidCoverage solid_coverage(const SolidSet& solids, const Vec3f& p, float h, bo
     const Solid& s = solids.solids()[i];
     const Near what = classify_solid(s, p, h, face);
     if (what == Near::Nothing) continue;
-    if (near.count < near.solid.size()) near.solid[near.count++] = &s;
+    if (near.count < near.solid.size()) near.solid[near.count++] = NearSolid(s, p);
     if (what == Near::OneFace) ++faces, found = face;
     else complex = true;
   }

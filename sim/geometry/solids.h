@@ -147,6 +147,8 @@ class SolidSet {
     return p.x() < b.min.x() - r || p.y() < b.min.y() - r || p.z() < b.min.z() - r || p.x() > b.max.x() + r ||
            p.y() > b.max.y() + r || p.z() > b.max.z() + r;
   }
+  // The box far_from tests against: solid i's bounding box, widened as described there (infinite for a tank).
+  const Aabb& broad_bounds(size_t i) const { return bounds_[i]; }
 
  private:
   void bound();  // bounds_ from solids_
