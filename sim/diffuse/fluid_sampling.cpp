@@ -39,6 +39,9 @@ void sample_fluid(const NeighbourGrid& grid, std::span<const Vec3f> sorted_motio
 
   // Groups: runs of equal key in sorted order, fluid-free particles excluded.
   const size_t inside_end = size_t(std::lower_bound(sorted.begin(), sorted.end(), outside) - sorted.begin());
+  // Shrunk to the group count below, so without headroom every frame with a few more particles than
+  // the last would reallocate it whole (15M particles: 60 MB of fresh memory a frame).
+  if (out.group_start.capacity() < inside_end + 1) out.group_start.reserve(inside_end + 1 + inside_end / 8);
   out.group_start.resize(inside_end + 1);
   const size_t groups = parallel_select(
       inside_end, [&](size_t s) { return s == 0 || sorted[s] != sorted[s - 1]; },
