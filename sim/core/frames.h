@@ -56,7 +56,7 @@ struct DiffuseFrame {
   size_t size() const { return positions.size(); }
   void resize(size_t n);
   void reserve(size_t n);
-  std::array<size_t, kDiffuseTypeCount> count_by_type() const;
+  std::array<size_t, kDiffuseTypeCount> count_by_type() const;  // an invalid type (>= 3) is not counted
   void validate(const std::string& where) const;
 };
 

@@ -312,6 +312,24 @@ TEST(Cache, LargeDiffuseFramesRoundTripExactlyAcrossChunks) {
   EXPECT_EQ(e.count_by_type()[2], n / 3);
 }
 
+TEST(Cache, TypeCountsAreExactAcrossChunksAndSkipInvalidTypes) {
+  // Three chunks of 2^16 and a short fourth; type t at i when i % 7 is t (0, 1, 2), spray otherwise,
+  // so the counts follow from the pattern alone. One particle carries an invalid type 3.
+  const size_t n = 3 * (size_t(1) << 16) + 17;
+  DiffuseFrame d;
+  d.resize(n);
+  std::array<size_t, 3> expected{};
+  for (size_t i = 0; i < n; ++i) {
+    const size_t t = i % 7 < 3 ? i % 7 : 0;
+    d.types[i] = DiffuseType(t);
+    ++expected[t];
+  }
+  EXPECT_EQ(d.count_by_type(), expected);
+  d.types[n - 1] = DiffuseType(3);
+  --expected[(n - 1) % 7 < 3 ? (n - 1) % 7 : 0];
+  EXPECT_EQ(d.count_by_type(), expected);
+}
+
 TEST(Cache, ParallelCrcIsTheSerialCrc) {
   // 9 MiB and 13 bytes: three 4 MiB pieces, the last one short.
   std::vector<unsigned char> bytes((size_t(9) << 20) + 13);
