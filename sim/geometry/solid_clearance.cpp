@@ -11,43 +11,41 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr size_t kClearanceMaxRow = size_t(1) << 16;  // cells along one axis
 
-struct Box {
-  Vec3d min = Vec3d::Constant(kInf), max = Vec3d::Constant(-kInf);
-  bool empty() const { return !(min.array() < max.array()).all(); }
-  bool finite() const { return min.allFinite() && max.allFinite(); }
-};
+using Box = Eigen::AlignedBox3d;
+
+// Empty, or flat along an axis: no ball fits in it.
+bool no_room(const Box& b) { return !(b.min().array() < b.max().array()).all(); }
 
 }  // namespace
 
-SolidClearance::SolidClearance(const SolidSet& solids, float reach) : reach_(reach), built_(true) {
+SolidClearance::SolidClearance(const SolidSet& solids, float reach) : built_(true) {
   // The grid covers the tanks' common interior (an open top closed at its rim: spray above the rim
   // takes the exact tests), or without a tank every solid's broad box widened by the reach.
   const double far_reach = double(reach * 1.001f);  // what SolidSet::far_from adds to its boxes
   bool any_tank = false;
-  Box tanks{Vec3d::Constant(-kInf), Vec3d::Constant(kInf)}, others;
+  Box tanks(Vec3d::Constant(-kInf), Vec3d::Constant(kInf)), others;  // others: empty
   for (size_t i = 0; i < solids.solids().size(); ++i) {
     const Solid& s = solids.solids()[i];
     if (s.kind == Solid::Kind::Tank) {
       any_tank = true;
-      tanks.min = tanks.min.cwiseMax(s.min.cast<double>()), tanks.max = tanks.max.cwiseMin(s.max.cast<double>());
+      tanks = tanks.intersection(Box(s.min.cast<double>(), s.max.cast<double>()));
     } else {
-      others.min = others.min.cwiseMin(solids.broad_bounds(i).min.cast<double>());
-      others.max = others.max.cwiseMax(solids.broad_bounds(i).max.cast<double>());
+      others.extend(Box(solids.broad_bounds(i).min.cast<double>(), solids.broad_bounds(i).max.cast<double>()));
     }
   }
   outside_clear_ = !any_tank;
   Box grid = tanks;
   if (!any_tank) {
-    if (others.empty()) return;  // no solid at all: every finite point is clear
-    const double widen = far_reach + 1e-3 * (others.max - others.min).maxCoeff() + 1e-6 * others.max.cwiseAbs().maxCoeff();
-    grid.min = others.min - Vec3d::Constant(widen), grid.max = others.max + Vec3d::Constant(widen);
+    if (others.isEmpty()) return;  // no solid at all: every finite point is clear
+    const double widen = far_reach + 1e-3 * others.sizes().maxCoeff() + 1e-6 * others.max().cwiseAbs().maxCoeff();
+    grid = Box(others.min() - Vec3d::Constant(widen), others.max() + Vec3d::Constant(widen));
   }
-  if (grid.empty() || !grid.finite()) {
+  if (no_room(grid) || !grid.min().allFinite() || !grid.max().allFinite()) {
     outside_clear_ = false;  // nothing can be said cheaply: every point takes the exact tests
     return;
   }
 
-  const Vec3d extent = grid.max - grid.min;
+  const Vec3d extent = grid.sizes();
   double cell = std::max({double(reach), std::cbrt(extent.prod() / double(kClearanceMaxCells)), 1e-6 * extent.maxCoeff()});
   std::array<size_t, 3> n{};
   for (;;) {
@@ -55,7 +53,7 @@ SolidClearance::SolidClearance(const SolidSet& solids, float reach) : reach_(rea
     if (n[0] * n[1] * n[2] <= kClearanceMaxCells && std::max({n[0], n[1], n[2]}) <= kClearanceMaxRow) break;
     cell *= 1.25;
   }
-  origin_ = grid.min.cast<float>();
+  origin_ = grid.min().cast<float>();
   per_cell_ = float(1.0 / cell);
   if (!(per_cell_ > 0.0f) || !std::isfinite(per_cell_) || !origin_.allFinite()) {
     per_cell_ = 0.0f, outside_clear_ = false;  // beyond a float's range: every point takes the exact tests
@@ -64,7 +62,7 @@ SolidClearance::SolidClearance(const SolidSet& solids, float reach) : reach_(rea
   // The cell index clear() computes in floats may put a point near a cell's side into its neighbour
   // (by a float's rounding of the index, under 0.008 of a cell at kClearanceMaxRow cells, and of the
   // coordinate): the slack widens every cell by more than that.
-  const double slack = 0.02 * cell + 1e-6 * std::max(grid.min.cwiseAbs().maxCoeff(), grid.max.cwiseAbs().maxCoeff());
+  const double slack = 0.02 * cell + 1e-6 * std::max(grid.min().cwiseAbs().maxCoeff(), grid.max().cwiseAbs().maxCoeff());
   const Vec3d origin = origin_.cast<double>();
   const double step = 1.0 / double(per_cell_);
   auto lo = [&](int a, size_t i) { return origin[a] + double(i) * step - slack; };

@@ -24,7 +24,8 @@ class SolidClearance {
   SolidClearance() = default;  // built for nothing: clear() is always false
   SolidClearance(const SolidSet& solids, float reach);
 
-  // True only if the ball of radius reach() around p meets no solid and lies inside every tank's walls.
+  // True only if the ball of radius `reach` (as built) around p meets no solid and lies inside every
+  // tank's walls.
   bool clear(const Vec3f& p) const {
     const float x = (p.x() - origin_.x()) * per_cell_, y = (p.y() - origin_.y()) * per_cell_,
                 z = (p.z() - origin_.z()) * per_cell_;
@@ -35,7 +36,6 @@ class SolidClearance {
   }
 
   bool built() const { return built_; }
-  float reach() const { return reach_; }
   float cell_size() const { return per_cell_ > 0.0f ? 1.0f / per_cell_ : 0.0f; }
   size_t clear_cells() const;  // how many cells are clear (for tests and reports)
 
@@ -43,7 +43,7 @@ class SolidClearance {
   void set(size_t cell, bool clear);
 
   Vec3f origin_ = Vec3f::Zero();
-  float per_cell_ = 0.0f, reach_ = 0.0f;
+  float per_cell_ = 0.0f;
   std::array<float, 3> dims_{0.0f, 0.0f, 0.0f};  // cells along each axis (floats: compared with x, y, z)
   std::vector<uint64_t> bits_;
   bool outside_clear_ = false, built_ = false;
