@@ -1,7 +1,11 @@
-// The colour field's lattice values against the kernel sum over every particle, in double precision.
+// The colour field's lattice values against the kernel sum over every particle, in double precision,
+// and its sparsity: every lattice point within h of a particle lies in a stored brick.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 
@@ -12,7 +16,8 @@ namespace {
 
 constexpr double kR = 0.01, kH = 4 * kR;
 
-// c(x) = (2r)^3 315 / (64 pi h^9) sum_j (h^2 - |x - x_j|^2)^3 over the particles within h, and a bound
+// c(x) = (2r)^3 315 / (64 pi h^3) sum_j q_j^3, q_j = 1 - |x - x_j|^2 / h^2, over the particles within h
+// (poly6: the same as 315 / (64 pi h^9) (h^2 - d^2)^3), and a bound
 // on the float field's error: each term is q^3 (q = 1 - d^2/h^2) from a q rounded by a few ulps of 1,
 // so it is off by about 3 q^2 ulps; the sums' own rounding is relative to the value.
 struct KernelSum {
@@ -20,7 +25,7 @@ struct KernelSum {
 };
 KernelSum kernel_sum(const std::vector<Vec3f>& points, const Vec3d& x) {
   const double scale = std::pow(2 * kR, 3) * 315.0 / (64.0 * std::numbers::pi * std::pow(kH, 3));
-  constexpr double kQError = 8 * 1.2e-7;  // 8 ulps of 1 in float
+  constexpr double kQError = 8 * std::numeric_limits<float>::epsilon();  // 8 ulps of 1 in float
   double sum = 0.0, spread = 0.0;
   for (const Vec3f& p : points) {
     const double q = 1.0 - (x - p.cast<double>()).squaredNorm() / (kH * kH);
@@ -29,8 +34,8 @@ KernelSum kernel_sum(const std::vector<Vec3f>& points, const Vec3d& x) {
   return {scale * sum, scale * spread + 1e-6 * scale * sum + 1e-12};
 }
 
-// Particles scattered over several bricks, some on lattice coordinates and some at exactly h from
-// a lattice point along an axis, where a kernel's row starts or ends.
+// Particles scattered over several bricks, some on lattice coordinates and some about h from a
+// lattice point along an axis, where a kernel's row starts or ends.
 std::vector<Vec3f> cloud(uint32_t seed, float cell) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> u(0.0f, 0.25f);
@@ -65,6 +70,26 @@ void expect_kernel_sums(const std::vector<Vec3f>& points, float cell) {
         }
   }
   EXPECT_GT(inside, checked / 4);  // most points lie within some particle's reach
+
+  // Points left out of the field read as 0: none of them may be within h of a particle.
+  size_t near = 0;
+  for (const Vec3f& p : points) {
+    std::array<int, 3> lo{}, hi{};
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::max(0, int(std::ceil((p[a] - kH - field.coord(a, 0)) / cell)));
+      hi[a] = int(std::floor((p[a] + kH - field.coord(a, 0)) / cell));
+    }
+    for (int z = lo[2]; z <= hi[2]; ++z)
+      for (int y = lo[1]; y <= hi[1]; ++y)
+        for (int x = lo[0]; x <= hi[0]; ++x) {
+          const Vec3d g(field.coord(0, x), field.coord(1, y), field.coord(2, z));
+          if ((g - p.cast<double>()).norm() >= kH) continue;
+          ++near;
+          ASSERT_NE(field.find_brick(x / kB, y / kB, z / kB), SparseBins::kMissing)
+              << "lattice point " << g.transpose() << " lies within h of " << p.transpose();
+        }
+  }
+  EXPECT_GT(near, points.size() * 100);  // about 4/3 pi (h / cell)^3 points a particle
 }
 
 TEST(ColourField, EveryLatticeValueIsTheKernelSumOverAllParticles) {
