@@ -30,7 +30,7 @@ struct FrameInputs {
   int index = 0;
   double time = 0.0;                  // s: picks the camera key
   std::span<const Vec3f> fluid;       // fluid particle positions; empty: no surface
-  const DiffuseFrame* diffuse = nullptr;
+  const DiffusePoints* diffuse = nullptr;  // positions and types: all the volume pass reads
   std::vector<SolidMesh> solids;
 };
 

@@ -129,7 +129,7 @@ LoadedFrame load_frame(PreparedRender& p, int f) {
       const auto cache = diffuse_cache_path(p.scene->scene_out, f);
       if (!std::filesystem::is_regular_file(cache))
         fail(cache.string(), ": no diffuse cache for this frame; run `spume simulate` (or `spume run`) first");
-      frame.diffuse = read_diffuse_cache(cache);
+      frame.diffuse = read_diffuse_points(cache);
       frame.has_diffuse = true;
     }
     if (p.settings.draw_solids) {

@@ -52,7 +52,7 @@ std::vector<int> frames_to_render(const RenderScene& scene, const std::optional<
 // when a type is drawn; a missing diffuse cache is an error naming it).
 struct LoadedFrame {
   FluidFrame fluid;
-  DiffuseFrame diffuse;
+  DiffusePoints diffuse;  // positions and types only: what the renderer draws
   bool has_diffuse = false;
   std::vector<SolidMesh> solids;
   int index = 0;

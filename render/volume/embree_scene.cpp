@@ -188,7 +188,7 @@ struct SphereHitScene::Impl {
   }
 };
 
-SphereHitScene::SphereHitScene(const DiffuseFrame& frame, const std::array<float, kDiffuseTypeCount>& radius)
+SphereHitScene::SphereHitScene(DiffuseView frame, const std::array<float, kDiffuseTypeCount>& radius)
     : impl_(std::make_unique<Impl>()) {
   impl_->scene = rtcNewScene(device().device);
   std::array<std::vector<uint32_t>, kDiffuseTypeCount> particle;  // primID -> particle index, per type

@@ -40,7 +40,7 @@ class SphereHitScene {
     Vec3f centre;     // m, read from Embree's own vertex buffer (cache-warm after the trace)
     uint32_t type;    // DiffuseType (geomID)
   };
-  SphereHitScene(const DiffuseFrame& frame, const std::array<float, kDiffuseTypeCount>& radius);
+  SphereHitScene(DiffuseView frame, const std::array<float, kDiffuseTypeCount>& radius);
   ~SphereHitScene();
   SphereHitScene(const SphereHitScene&) = delete;
   SphereHitScene& operator=(const SphereHitScene&) = delete;

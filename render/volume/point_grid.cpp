@@ -8,7 +8,7 @@
 
 namespace spume {
 
-PointGrid::PointGrid(const DiffuseFrame& frame, DiffuseType type, float radius) {
+PointGrid::PointGrid(DiffuseView frame, DiffuseType type, float radius) {
   std::vector<uint32_t> idx;
   Aabb box;
   for (size_t i = 0; i < frame.size(); ++i)

@@ -13,7 +13,7 @@ class PointGrid {
  public:
   PointGrid() = default;
   // The particles of `type` in `frame`, spheres of radius r (m, > 0).
-  PointGrid(const DiffuseFrame& frame, DiffuseType type, float radius);
+  PointGrid(DiffuseView frame, DiffuseType type, float radius);
 
   bool empty() const { return points_.empty(); }
   bool covers(const Vec3d& x) const;

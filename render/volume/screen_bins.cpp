@@ -107,7 +107,7 @@ ScreenBins::~ScreenBins() {
   if (entries_.capacity() > spare_entries.capacity()) std::swap(entries_, spare_entries);
 }
 
-ScreenBins::ScreenBins(const DiffuseFrame& frame, const std::array<float, kDiffuseTypeCount>& radius,
+ScreenBins::ScreenBins(DiffuseView frame, const std::array<float, kDiffuseTypeCount>& radius,
                        const SphereProjector& projector, int width, int height) {
   if (width <= 0 || height <= 0 || width > 65535 || height > 65535)
     fail("volume pass: image size ", width, "x", height, " outside 1..65535");

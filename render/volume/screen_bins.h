@@ -73,7 +73,7 @@ class ScreenBins {
   // The entry array outlives the bins: the next ScreenBins in the process (the next frame) reuses
   // it when it is large enough. At 15M spheres the kernel's zeroing of its fresh pages (~290 MB)
   // was a seventh of the pass's CPU time; frames after the first skip it. Thread-safe.
-  ScreenBins(const DiffuseFrame& frame, const std::array<float, kDiffuseTypeCount>& radius, const SphereProjector& projector,
+  ScreenBins(DiffuseView frame, const std::array<float, kDiffuseTypeCount>& radius, const SphereProjector& projector,
              int width, int height);
   ~ScreenBins();
   ScreenBins(const ScreenBins&) = delete;

@@ -28,7 +28,7 @@ constexpr int kTile = ScreenBins::kTile, kBin = ScreenBins::kBin;
 
 bool finite3(const Vec3f& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
 
-void validate(const DiffuseFrame& frame, const Camera& camera, const VolumeSettings& s) {
+void validate(DiffuseView frame, const Camera& camera, const VolumeSettings& s) {
   for (int k = 0; k < kDiffuseTypeCount; ++k) {
     const DiffuseLook& l = s.look[size_t(k)];
     const char* name = to_string(DiffuseType(k));
@@ -47,7 +47,7 @@ void validate(const DiffuseFrame& frame, const Camera& camera, const VolumeSetti
 
 // Everything the tile workers share, read-only.
 struct Pass {
-  const DiffuseFrame* frame;
+  const DiffuseView* frame;
   const Camera* camera;
   const VolumeSettings* settings;
   VolumeShading shading;
@@ -116,7 +116,7 @@ size_t march(const Pass& pass, Scratch& s, std::vector<RaySample>& out) {
 }
 
 // Box around every drawn sphere; counts them. Fixed chunks, exact min/max: deterministic.
-Aabb drawn_bounds(const DiffuseFrame& frame, const std::array<float, kDiffuseTypeCount>& radius, size_t& count) {
+Aabb drawn_bounds(DiffuseView frame, const std::array<float, kDiffuseTypeCount>& radius, size_t& count) {
   const size_t n = frame.size(), chunks = std::clamp<size_t>(n / 65536, 1, 64);
   std::vector<Aabb> box(chunks);
   std::vector<size_t> drawn(chunks, 0), bad(chunks, SIZE_MAX);
@@ -153,7 +153,7 @@ Aabb drawn_bounds(const DiffuseFrame& frame, const std::array<float, kDiffuseTyp
 
 }  // namespace
 
-bool volume_pass_needed(const DiffuseFrame& frame, const VolumeSettings& settings) {
+bool volume_pass_needed(DiffuseView frame, const VolumeSettings& settings) {
   const auto counts = frame.count_by_type();
   for (int k = 0; k < kDiffuseTypeCount; ++k)
     if (settings.drawn(DiffuseType(k)) && counts[size_t(k)] > 0) return true;
@@ -168,7 +168,7 @@ double march_step(const VolumeSettings& settings) {
   return std::isfinite(r) ? 0.5 * double(r) : 0.0;
 }
 
-VolumeImage render_volume(const DiffuseFrame& frame, const Camera& camera, const VolumeSettings& settings,
+VolumeImage render_volume(DiffuseView frame, const Camera& camera, const VolumeSettings& settings,
                           const VolumeSurfaces& surfaces, VolumeStats* stats) {
   validate(frame, camera, settings);
   VolumeStats st;

@@ -21,11 +21,11 @@
 namespace spume {
 
 // True when some particle of a drawn type (radius > 0) exists; otherwise the pass is a no-op.
-bool volume_pass_needed(const DiffuseFrame& frame, const VolumeSettings& settings);
+bool volume_pass_needed(DiffuseView frame, const VolumeSettings& settings);
 
 // Throws Error for a bad setting (negative radius or alpha, no samples, ...) or frame arrays of
 // different sizes. When nothing is drawn returns L = 1 everywhere without building anything.
-VolumeImage render_volume(const DiffuseFrame& frame, const Camera& camera, const VolumeSettings& settings,
+VolumeImage render_volume(DiffuseView frame, const Camera& camera, const VolumeSettings& settings,
                           const VolumeSurfaces& surfaces = {}, VolumeStats* stats = nullptr);
 
 // The march step used for these settings (settings.march_step, or half the smallest drawn radius).

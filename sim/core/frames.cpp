@@ -56,7 +56,11 @@ void DiffuseFrame::reserve(size_t n) {
   types.reserve(n);
 }
 
-std::array<size_t, kDiffuseTypeCount> DiffuseFrame::count_by_type() const {
+std::array<size_t, kDiffuseTypeCount> DiffuseFrame::count_by_type() const { return count_types(types); }
+
+std::array<size_t, kDiffuseTypeCount> DiffuseView::count_by_type() const { return count_types(types); }
+
+std::array<size_t, kDiffuseTypeCount> count_types(std::span<const DiffuseType> types) {
   // In parallel over fixed chunks (every frame is counted twice, by the simulator and its cache: 15 ms
   // each at 15M on one core); integer sums, so the split cannot change them.
   const size_t n = types.size(), chunks = std::max<size_t>(1, n >> 16);

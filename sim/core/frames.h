@@ -3,6 +3,7 @@
 // metadata, with size checks only; the algorithms live elsewhere.
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -59,6 +60,33 @@ struct DiffuseFrame {
   std::array<size_t, kDiffuseTypeCount> count_by_type() const;  // an invalid type (>= 3) is not counted
   void validate(const std::string& where) const;
 };
+
+// What a renderer draws of a diffuse frame: where each particle is and what it is. Reading only these
+// from a cache (io/spume_cache.h, read_diffuse_points) skips the ids, velocities and lifetimes, most of
+// a compact cache's bytes.
+struct DiffusePoints {
+  int index = 0;
+  double time = 0.0;               // s
+  std::vector<Vec3f> positions;    // m
+  std::vector<DiffuseType> types;
+
+  size_t size() const { return positions.size(); }
+};
+
+// Positions and types of either, without a copy; valid while the frame it views lives.
+struct DiffuseView {
+  int index = 0;
+  std::span<const Vec3f> positions;
+  std::span<const DiffuseType> types;
+
+  DiffuseView(const DiffuseFrame& f) : index(f.index), positions(f.positions), types(f.types) {}
+  DiffuseView(const DiffusePoints& p) : index(p.index), positions(p.positions), types(p.types) {}
+  size_t size() const { return positions.size(); }
+  std::array<size_t, kDiffuseTypeCount> count_by_type() const;  // an invalid type (>= 3) is not counted
+};
+
+// Particles of each type among `types`; an invalid type (>= 3) is not counted.
+std::array<size_t, kDiffuseTypeCount> count_types(std::span<const DiffuseType> types);
 
 // A diffuse particle's id: parent fluid id (32 bits), global birth step (20 bits), sample (12 bits).
 constexpr uint32_t kMaxBirthStep = (1u << 20) - 1;

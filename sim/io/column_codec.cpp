@@ -73,7 +73,10 @@ void append_column(CacheBytes& out, const void* data, size_t bytes, size_t types
   out.resize(start + 16 + stored);
 }
 
-void read_column(io::ByteReader& r, void* dst, size_t bytes, const char* what) {
+namespace {
+
+// The next column's stored chunks, after checking its prefix against the `bytes` the caller expects.
+std::string_view take_column(io::ByteReader& r, size_t bytes, const char* what) {
   const uint64_t raw = r.read<uint64_t>(what);
   if (raw != bytes)
     fail(r.where(), ": corrupt: the ", what, " column holds ", raw, " bytes; the header asks for ", bytes);
@@ -81,7 +84,15 @@ void read_column(io::ByteReader& r, void* dst, size_t bytes, const char* what) {
   if (stored > r.remaining())
     fail(r.where(), ": truncated or corrupt: the ", what, " column claims ", stored, " bytes; ", r.remaining(),
          " remain");
-  const std::string_view column = r.take(size_t(stored), what);
+  return r.take(size_t(stored), what);
+}
+
+}  // namespace
+
+void skip_column(io::ByteReader& r, size_t bytes, const char* what) { take_column(r, bytes, what); }
+
+void read_column(io::ByteReader& r, void* dst, size_t bytes, const char* what) {
+  const std::string_view column = take_column(r, bytes, what);
   // Every chunk's place first (chunk c holds raw bytes [c * kColumnChunkBytes, ...)), then in parallel.
   const size_t chunks = chunk_count(bytes);
   std::vector<size_t> offset(chunks + 1, 0);

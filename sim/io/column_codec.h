@@ -45,5 +45,8 @@ void append_column(CacheBytes& out, const void* data, size_t bytes, size_t types
 // Reads the next column from r into dst, which holds exactly `bytes`: fails naming the file and `what`
 // when the column claims another size, runs past the file, or a chunk is corrupt.
 void read_column(io::ByteReader& r, void* dst, size_t bytes, const char* what);
+// Steps over the next column, of `bytes` raw bytes, without decoding it: fails as read_column does when
+// it claims another size or runs past the file; its chunks are not looked at.
+void skip_column(io::ByteReader& r, size_t bytes, const char* what);
 
 }  // namespace spume

@@ -231,30 +231,70 @@ std::optional<QuantizedDiffuse> quantize_diffuse(const DiffuseFrame& frame, doub
   return out;
 }
 
-DiffuseFrame dequantize_diffuse(const QuantizedDiffuse& in, const std::string& where) {
+namespace {
+
+// The occupied cells' keys and where each one's particles start, checked before any particle is
+// decoded: keys increase inside the grid, every cell holds at least one particle, all n in all.
+struct CellTable {
+  std::vector<uint64_t> key, first;  // first: occupied + 1 entries
+};
+
+CellTable checked_cells(const QuantizedDiffuse& in, size_t n, const std::string& where) {
   const DiffuseQuantization& q = in.q;
-  const size_t n = in.size();
-  if (in.cell_key_steps.size() != in.cell_counts.size() || in.offsets.size() != 3 * n ||
-      in.velocities.size() != 3 * n || in.lifetimes.size() != n || in.types.size() != (n + 3) / 4)
-    fail(where, ": corrupt: quantized columns disagree in length");
+  if (in.cell_key_steps.size() != in.cell_counts.size()) fail(where, ": corrupt: quantized columns disagree in length");
   uint64_t cells = 1;
   for (uint32_t c : q.cells) {
     if (c == 0 || cells > kMaxCells / c) fail(where, ": corrupt: cell grid ", q.cells[0], " x ", q.cells[1], " x ", q.cells[2]);
     cells *= c;
   }
-  // Where each occupied cell's particles start, checked before any particle is decoded.
   const size_t occupied = in.cell_counts.size();
-  std::vector<uint64_t> key(occupied), first(occupied + 1, 0);
+  CellTable t{std::vector<uint64_t>(occupied), std::vector<uint64_t>(occupied + 1, 0)};
   for (size_t c = 0; c < occupied; ++c) {
-    const uint64_t previous = c > 0 ? key[c - 1] : 0;
+    const uint64_t previous = c > 0 ? t.key[c - 1] : 0;
     if (c > 0 && in.cell_key_steps[c] == 0) fail(where, ": corrupt: occupied cell ", c, " repeats the previous one");
     if (in.cell_key_steps[c] >= cells - previous) fail(where, ": corrupt: occupied cell ", c, " lies outside the cell grid");
-    key[c] = previous + in.cell_key_steps[c];
-    if (in.cell_counts[c] == 0 || in.cell_counts[c] > n - first[c])
-      fail(where, ": corrupt: occupied cell ", c, " holds ", in.cell_counts[c], " particles; ", n - first[c], " remain");
-    first[c + 1] = first[c] + in.cell_counts[c];
+    t.key[c] = previous + in.cell_key_steps[c];
+    if (in.cell_counts[c] == 0 || in.cell_counts[c] > n - t.first[c])
+      fail(where, ": corrupt: occupied cell ", c, " holds ", in.cell_counts[c], " particles; ", n - t.first[c], " remain");
+    t.first[c + 1] = t.first[c] + in.cell_counts[c];
   }
-  if (first[occupied] != n) fail(where, ": corrupt: the occupied cells hold ", first[occupied], " particles; the header says ", n);
+  if (t.first[occupied] != n) fail(where, ": corrupt: the occupied cells hold ", t.first[occupied], " particles; the header says ", n);
+  return t;
+}
+
+// Calls decode(particle, cell) for every particle, each occupied cell by one task.
+template <typename Decode>
+void for_each_particle(const QuantizedDiffuse& in, const CellTable& t, Decode&& decode) {
+  const DiffuseQuantization& q = in.q;
+  parallel_for(t.key.size(), 1, [&](size_t cb, size_t ce) {
+    for (size_t c = cb; c < ce; ++c) {
+      const uint64_t key = t.key[c];
+      const uint64_t cell[3] = {key % q.cells[0], (key / q.cells[0]) % q.cells[1], key / (uint64_t(q.cells[0]) * q.cells[1])};
+      for (size_t k = t.first[c]; k < t.first[c + 1]; ++k) decode(k, cell);
+    }
+  });
+}
+
+Vec3f position_of(const QuantizedDiffuse& in, size_t n, size_t k, const uint64_t cell[3]) {
+  Vec3f p;
+  for (int a = 0; a < 3; ++a) {
+    const uint64_t s = (cell[a] << kCellOffsetBits) + in.offsets[a * n + k];
+    p[a] = float(in.q.origin[a] + double(s) * in.q.position_step);
+  }
+  return p;
+}
+
+DiffuseType type_of(const QuantizedDiffuse& in, size_t k) { return DiffuseType((in.types[k / 4] >> (2 * (k % 4))) & 3u); }
+
+}  // namespace
+
+DiffuseFrame dequantize_diffuse(const QuantizedDiffuse& in, const std::string& where) {
+  const DiffuseQuantization& q = in.q;
+  const size_t n = in.size();
+  if (in.offsets.size() != 3 * n || in.velocities.size() != 3 * n || in.lifetimes.size() != n ||
+      in.types.size() != (n + 3) / 4)
+    fail(where, ": corrupt: quantized columns disagree in length");
+  const CellTable cells = checked_cells(in, n, where);
 
   DiffuseFrame frame;
   // Fresh output memory costs a page fault per 4 KiB on first touch: ask for 2 MiB pages first.
@@ -265,23 +305,32 @@ DiffuseFrame dequantize_diffuse(const QuantizedDiffuse& in, const std::string& w
   advise_huge_pages(frame.lifetimes.data(), n * sizeof(float));
   advise_huge_pages(frame.types.data(), n);
   frame.resize(n);
-  parallel_for(occupied, 1, [&](size_t cb, size_t ce) {
-    for (size_t c = cb; c < ce; ++c) {
-      const uint64_t cell[3] = {key[c] % q.cells[0], (key[c] / q.cells[0]) % q.cells[1],
-                                key[c] / (uint64_t(q.cells[0]) * q.cells[1])};
-      for (size_t k = first[c]; k < first[c + 1]; ++k) {
-        for (int a = 0; a < 3; ++a) {
-          const uint64_t s = (cell[a] << kCellOffsetBits) + in.offsets[a * n + k];
-          frame.positions[k][a] = float(q.origin[a] + double(s) * q.position_step);
-          frame.velocities[k][a] = float(double(in.velocities[a * n + k]) * q.velocity_step);
-        }
-        frame.lifetimes[k] = float(q.life_origin + double(in.lifetimes[k]) * q.life_step);
-        frame.ids[k] = in.ids[k];
-        frame.types[k] = DiffuseType((in.types[k / 4] >> (2 * (k % 4))) & 3u);
-      }
-    }
+  for_each_particle(in, cells, [&](size_t k, const uint64_t cell[3]) {
+    frame.positions[k] = position_of(in, n, k, cell);
+    for (int a = 0; a < 3; ++a) frame.velocities[k][a] = float(double(in.velocities[a * n + k]) * q.velocity_step);
+    frame.lifetimes[k] = float(q.life_origin + double(in.lifetimes[k]) * q.life_step);
+    frame.ids[k] = in.ids[k];
+    frame.types[k] = type_of(in, k);
   });
   return frame;
+}
+
+DiffusePoints dequantize_points(const QuantizedDiffuse& in, size_t n, const std::string& where) {
+  if (in.offsets.size() != 3 * n || in.types.size() != (n + 3) / 4)
+    fail(where, ": corrupt: quantized columns disagree in length");
+  const CellTable cells = checked_cells(in, n, where);
+  DiffusePoints points;
+  points.positions.reserve(n);
+  points.types.reserve(n);
+  advise_huge_pages(points.positions.data(), n * sizeof(Vec3f));
+  advise_huge_pages(points.types.data(), n);
+  points.positions.resize(n);
+  points.types.resize(n);
+  for_each_particle(in, cells, [&](size_t k, const uint64_t cell[3]) {
+    points.positions[k] = position_of(in, n, k, cell);
+    points.types[k] = type_of(in, k);
+  });
+  return points;
 }
 
 }  // namespace spume

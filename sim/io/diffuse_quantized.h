@@ -50,5 +50,8 @@ struct QuantizedDiffuse {
 std::optional<QuantizedDiffuse> quantize_diffuse(const DiffuseFrame& frame, double position_step);
 // Back to particles (in the sorted order). Fails naming `where` when the data contradicts itself.
 DiffuseFrame dequantize_diffuse(const QuantizedDiffuse& q, const std::string& where);
+// Positions and types only, from the cells, offsets and types of a frame of n particles (the other
+// columns may be empty), in the sorted order.
+DiffusePoints dequantize_points(const QuantizedDiffuse& q, size_t n, const std::string& where);
 
 }  // namespace spume

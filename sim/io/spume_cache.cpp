@@ -236,9 +236,17 @@ HugeBuffer<char> read_whole_file(const std::filesystem::path& path) {
   return bytes;
 }
 
-DiffuseFrame read_compact_diffuse_cache(const std::filesystem::path& path, DiffuseCacheHeader& h) {
+// A version 2 file in memory, its CRC checked and its header read; the reader stands at the columns.
+struct CompactFile {
+  HugeBuffer<char> bytes;
+  DiffuseCacheHeader header;
+  std::optional<ByteReader> columns;
+};
+
+CompactFile open_compact_diffuse_cache(const std::filesystem::path& path) {
   const std::string where = path.string();
-  const HugeBuffer<char> bytes = read_whole_file(path);
+  CompactFile file{read_whole_file(path), {}, {}};
+  const HugeBuffer<char>& bytes = file.bytes;
   if (bytes.size() < kCompactDiffuseHeaderSize + 4)
     fail(where, ": truncated: ", bytes.size(), " bytes, shorter than the ", kCompactDiffuseHeaderSize,
          "-byte header and the CRC");
@@ -247,9 +255,20 @@ DiffuseFrame read_compact_diffuse_cache(const std::filesystem::path& path, Diffu
   const uint32_t computed = parallel_crc32(bytes.data(), bytes.size() - 4);
   if (stored != computed)
     fail(where, ": corrupt: CRC-32 mismatch (stored ", std::hex, stored, ", computed ", computed, ")");
-  ByteReader r(std::string_view(bytes.data(), bytes.size() - 4), where);
-  h = read_compact_diffuse_header(r);
-  check_count_fits(h, bytes.size(), where);
+  file.columns.emplace(std::string_view(bytes.data(), bytes.size() - 4), where);
+  file.header = read_compact_diffuse_header(*file.columns);
+  check_count_fits(file.header, bytes.size(), where);
+  return file;
+}
+
+void check_at_end(const ByteReader& r) {
+  if (!r.at_end()) fail(r.where(), ": corrupt: ", r.remaining(), " unexpected trailing bytes after the columns");
+}
+
+DiffuseFrame read_compact_diffuse_cache(const std::filesystem::path& path, DiffuseCacheHeader& h) {
+  CompactFile file = open_compact_diffuse_cache(path);
+  ByteReader& r = *file.columns;
+  h = file.header;
   const size_t n = size_t(h.count);
   DiffuseFrame frame;
   if (h.quantized) {
@@ -262,7 +281,7 @@ DiffuseFrame read_compact_diffuse_cache(const std::filesystem::path& path, Diffu
     read_values(r, q.lifetimes, n, "lifetime");
     read_values(r, q.types, (n + 3) / 4, "type");
     read_values(r, q.ids, n, "id");
-    frame = dequantize_diffuse(q, where);
+    frame = dequantize_diffuse(q, r.where());
   } else {
     read_values(r, frame.ids, n, "id");
     read_values(r, frame.positions, n, "position");
@@ -270,8 +289,33 @@ DiffuseFrame read_compact_diffuse_cache(const std::filesystem::path& path, Diffu
     read_values(r, frame.lifetimes, n, "lifetime");
     read_values(r, frame.types, n, "type");
   }
-  if (!r.at_end()) fail(where, ": corrupt: ", r.remaining(), " unexpected trailing bytes after the columns");
+  check_at_end(r);
   return frame;
+}
+
+// Positions and types of a quantized version 2 file; the other columns are stepped over undecoded
+// (the CRC has covered their bytes).
+DiffusePoints read_quantized_diffuse_points(CompactFile& file) {
+  ByteReader& r = *file.columns;
+  const DiffuseCacheHeader& h = file.header;
+  const size_t n = size_t(h.count);
+  QuantizedDiffuse q;
+  q.q = h.quantization;
+  read_values(r, q.cell_key_steps, size_t(h.occupied_cells), "cell");
+  read_values(r, q.cell_counts, size_t(h.occupied_cells), "cell count");
+  read_values(r, q.offsets, 3 * n, "position");
+  skip_column(r, 3 * n * sizeof(int16_t), "velocity");
+  skip_column(r, n * sizeof(uint16_t), "lifetime");
+  read_values(r, q.types, (n + 3) / 4, "type");
+  skip_column(r, n * sizeof(uint64_t), "id");
+  check_at_end(r);
+  // Every position lies between the grid's two corners: finite there, finite everywhere.
+  for (int a = 0; a < 3; ++a) {
+    const double far = q.q.origin[a] + double(uint64_t(q.q.cells[a]) << kCellOffsetBits) * q.q.position_step;
+    if (!std::isfinite(float(q.q.origin[a])) || !std::isfinite(float(far)))
+      fail(r.where(), ": corrupt: the quantization grid reaches ", far, " m on axis ", a, ", beyond a float");
+  }
+  return dequantize_points(q, n, r.where());
 }
 
 }  // namespace
@@ -381,6 +425,34 @@ DiffuseFrame read_diffuse_cache(const std::filesystem::path& path, DiffuseCacheH
            " particles but the data has ", counts[t], " (corrupt)");
   if (header) *header = h;
   return frame;
+}
+
+DiffusePoints read_diffuse_points(const std::filesystem::path& path, DiffuseCacheHeader* header) {
+  const uint32_t version = diffuse_cache_version(path);
+  if (version != 0) check_known_diffuse_version(version, path);
+  DiffusePoints points;
+  DiffuseCacheHeader h;
+  if (version == kDiffuseCacheVersion && peek_diffuse_cache(path).quantized) {
+    CompactFile file = open_compact_diffuse_cache(path);
+    h = file.header;
+    points = read_quantized_diffuse_points(file);
+  } else {  // exact or version 1: their columns are the frame's own arrays, read whole
+    DiffuseFrame frame = read_diffuse_cache(path, &h);
+    points.positions = std::move(frame.positions);
+    points.types = std::move(frame.types);
+  }
+  points.index = h.frame_index;
+  points.time = h.time;
+  // The header's counts sum to n, so equal counts also mean no type outside 0..2.
+  const auto counts = count_types(points.types);
+  if (const size_t valid = counts[0] + counts[1] + counts[2]; valid != points.size())
+    fail(path.string(), ": corrupt: ", points.size() - valid, " particles have a type outside 0..2 (allowed 0 spray, 1 foam, 2 bubble)");
+  for (int t = 0; t < kDiffuseTypeCount; ++t)
+    if (counts[t] != h.count_by_type[t])
+      fail(path.string(), ": header says ", h.count_by_type[t], " ", to_string(DiffuseType(t)),
+           " particles but the data has ", counts[t], " (corrupt)");
+  if (header) *header = h;
+  return points;
 }
 
 DiffuseCacheHeader peek_diffuse_cache(const std::filesystem::path& path) {

@@ -89,6 +89,10 @@ void write_diffuse_cache(const std::filesystem::path& path, const DiffuseFrame& 
 CacheBytes encode_diffuse_cache(const DiffuseFrame& frame, double position_step, const std::string& where);
 // Reads versions 1 and 2; any other version is refused naming the file and what to do.
 DiffuseFrame read_diffuse_cache(const std::filesystem::path& path, DiffuseCacheHeader* header = nullptr);
+// Positions and types only (what a renderer draws), checked as read_diffuse_cache checks them: of a
+// quantized cache the other columns are not decoded. Same particles, in the same order, as
+// read_diffuse_cache.
+DiffusePoints read_diffuse_points(const std::filesystem::path& path, DiffuseCacheHeader* header = nullptr);
 DiffuseCacheHeader peek_diffuse_cache(const std::filesystem::path& path);
 
 }  // namespace spume

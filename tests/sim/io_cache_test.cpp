@@ -163,6 +163,11 @@ TEST(Cache, DiffuseRoundTripMatchesTheDocumentedLayout) {
   EXPECT_FALSE(h.quantized);
   EXPECT_EQ(h.count_by_type, (std::array<uint64_t, 3>{2, 1, 1}));
   EXPECT_EQ(peek_diffuse_cache(p).count_by_type, h.count_by_type);
+  const DiffusePoints points = read_diffuse_points(p);  // an exact cache: the frame's own order and bits
+  EXPECT_EQ(points.index, 3);
+  EXPECT_EQ(points.time, 0.06);
+  EXPECT_EQ(points.positions, d.positions);
+  EXPECT_EQ(points.types, d.types);
 }
 
 TEST(Cache, VersionOneDiffuseCachesAreStillRead) {
@@ -179,6 +184,10 @@ TEST(Cache, VersionOneDiffuseCachesAreStillRead) {
   EXPECT_EQ(e.lifetimes, d.lifetimes);
   EXPECT_EQ(e.types, d.types);
   EXPECT_EQ(peek_diffuse_cache(p).count, 4u);
+  const DiffusePoints points = read_diffuse_points(p);
+  EXPECT_EQ(points.index, 3);
+  EXPECT_EQ(points.positions, d.positions);
+  EXPECT_EQ(points.types, d.types);
 }
 
 TEST(Cache, AnUnknownDiffuseVersionIsRefusedNamingTheFileAndWhatToDo) {

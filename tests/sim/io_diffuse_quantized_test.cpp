@@ -35,6 +35,15 @@ DiffuseFrame round_trip(const DiffuseFrame& d, double step = kStep) {
   EXPECT_EQ(e.size(), d.size());
   EXPECT_EQ(e.index, d.index);
   EXPECT_EQ(e.time, d.time);
+  // The renderer's read (positions and types only) gives the same particles in the same order, so the
+  // bounds checked below hold for it too.
+  DiffuseCacheHeader points_header;
+  const DiffusePoints points = read_diffuse_points(p, &points_header);
+  EXPECT_EQ(points.index, d.index);
+  EXPECT_EQ(points.time, d.time);
+  EXPECT_TRUE(points.positions == e.positions);
+  EXPECT_TRUE(points.types == e.types);
+  EXPECT_EQ(points_header.count_by_type, h.count_by_type);
   double vmax = 0.0, lmin = INFINITY, lmax = -INFINITY;
   for (size_t i = 0; i < d.size(); ++i) {
     for (int a = 0; a < 3; ++a) vmax = std::max(vmax, std::abs(double(d.velocities[i][a])));
