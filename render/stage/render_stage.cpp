@@ -7,6 +7,7 @@
 #include "sim/core/error.h"
 #include "sim/core/frame_spec.h"
 #include "sim/core/huge_pages.h"
+#include "sim/core/parallel.h"
 #include "sim/core/progress.h"
 #include "sim/core/stopwatch.h"
 #include "render/image/png_io.h"
@@ -14,6 +15,8 @@
 #include "sim/io/file_identity.h"
 #include "sim/io/frame_pattern.h"
 #include "sim/io/spume_cache.h"
+#include "render/stage/frame_prefetch.h"
+#include "render/stage/png_writer_thread.h"
 #include "render/stage/render_stats.h"
 #include "render/stage/solid_meshes.h"
 
@@ -158,47 +161,81 @@ RenderStageSummary run_render_stage(PreparedRender& prepared, const nlohmann::js
   Progress progress("render " + scene.name, frames.size(), options.quiet);
   bool any_reconstructed = false, any_gl = false, any_volume = false;
   FrameReport total;  // stage seconds summed over the written frames
-  for (size_t k = 0; k < frames.size(); ++k) {
-    const int f = frames[k];
-    const std::filesystem::path path = expand_frame_pattern(pattern, f);
-    if (summary.first_frame.empty()) summary.first_frame = path, summary.first_frame_number = f;
-    // A frame on disk is kept only when it records exactly what this render would make it from.
-    const std::string record = frame_record(prepared, render_keys, f);
-    if (!options.overwrite && read_png_record(path) == record) {
-      ++summary.skipped;
-      progress.update(k + 1, "current, skipped");
-      continue;
+
+  // A frame on disk is kept only when it records exactly what this render would make it from. Decided
+  // once a frame, ahead of the loop where needed: the next frame to draw loads while this one renders.
+  std::vector<std::string> records(frames.size());
+  std::vector<int8_t> draw(frames.size(), -1);  // -1 not decided yet
+  auto needs_drawing = [&](size_t k) {
+    if (draw[k] < 0) {
+      records[k] = frame_record(prepared, render_keys, frames[k]);
+      draw[k] = options.overwrite || read_png_record(expand_frame_pattern(pattern, frames[k])) != records[k];
     }
-    const Stopwatch frame_start;
-    const LoadedFrame frame = load_frame(prepared, f);  // its errors name the frame
-    const double load_seconds = frame_start.seconds();
-    with_context(str("frame ", f), [&] {
+    return draw[k] == 1;
+  };
+  // With one thread, nothing runs beside the frame being drawn.
+  const bool overlap = thread_count() > 1;
+  FramePrefetch loads(prepared, overlap);
+  PngWriterThread pngs(overlap);
+  int in_flight = -1;  // the frame whose PNG pngs is writing
+  auto finish_png = [&] {
+    if (in_flight >= 0) with_context(str("frame ", in_flight), [&] { pngs.finish(); });
+    in_flight = -1;
+  };
+  // A frame that fails stops the render; the one before it is finished first (on disk, with its row).
+  try {
+    for (size_t k = 0; k < frames.size(); ++k) {
+      const int f = frames[k];
+      const std::filesystem::path path = expand_frame_pattern(pattern, f);
+      if (summary.first_frame.empty()) summary.first_frame = path, summary.first_frame_number = f;
+      if (!needs_drawing(k)) {
+        finish_png();  // progress in frame order
+        ++summary.skipped;
+        progress.update(k + 1, "current, skipped");
+        continue;
+      }
+      const Stopwatch frame_start;
+      TakenFrame taken = loads.take(f);  // its errors name the frame
+      size_t next = k + 1;
+      while (next < frames.size() && !needs_drawing(next)) ++next;
+      if (next < frames.size()) loads.start(frames[next]);
       FrameReport report;
-      const ImageRGB8 image = renderer.render(frame.inputs(), &report);
-      const Stopwatch write_start;
-      write_png(path, image, record);
-      // Every frame as it is written, so a run stopped midway keeps the times of what it drew.
-      merge_render_stats(scene.scene_out, {{.frame = f,
-                                            .triangles = report.triangles,
-                                            .spheres = report.spheres,
-                                            .load = load_seconds,
-                                            .reconstruct = report.reconstruct_seconds,
-                                            .surface = report.surface_seconds,
-                                            .volume = report.volume_seconds,
-                                            .composite = report.composite_seconds,
-                                            .write = write_start.seconds(),
-                                            .total = frame_start.seconds()}});
-      any_reconstructed |= report.reconstructed;
-      any_gl |= report.used_gl;
-      any_volume |= report.volume;
-      total.reconstruct_seconds += report.reconstruct_seconds;
-      total.surface_seconds += report.surface_seconds;
-      add_surface_stages(total.surface, report.surface);
-      total.volume_seconds += report.volume_seconds;
-      ++summary.written;
-      if (!options.quiet) std::printf("Saved: %s\n", path.string().c_str()), std::fflush(stdout);
-      progress.update(k + 1, str(report.triangles, " triangles, ", report.spheres, " diffuse spheres"));
-    });
+      ImageRGB8 image = with_context(str("frame ", f), [&] { return renderer.render(taken.frame.inputs(), &report); });
+      finish_png();
+      // The frame's time on this thread: waiting for its load, then drawing it.
+      const double frame_seconds = frame_start.seconds();
+      pngs.write(path, std::move(image), records[k], [&, f, k, path, report, frame_seconds, load = taken.load_seconds](double write) {
+        // Every frame once it is on disk, so a run stopped midway keeps the times of what it drew.
+        merge_render_stats(scene.scene_out, {{.frame = f,
+                                              .triangles = report.triangles,
+                                              .spheres = report.spheres,
+                                              .load = load,
+                                              .reconstruct = report.reconstruct_seconds,
+                                              .surface = report.surface_seconds,
+                                              .volume = report.volume_seconds,
+                                              .composite = report.composite_seconds,
+                                              .write = write,
+                                              .total = frame_seconds}});
+        any_reconstructed |= report.reconstructed;
+        any_gl |= report.used_gl;
+        any_volume |= report.volume;
+        total.reconstruct_seconds += report.reconstruct_seconds;
+        total.surface_seconds += report.surface_seconds;
+        add_surface_stages(total.surface, report.surface);
+        total.volume_seconds += report.volume_seconds;
+        ++summary.written;
+        if (!options.quiet) std::printf("Saved: %s\n", path.string().c_str()), std::fflush(stdout);
+        progress.update(k + 1, str(report.triangles, " triangles, ", report.spheres, " diffuse spheres"));
+      });
+      in_flight = f;
+    }
+    finish_png();
+  } catch (...) {
+    try {
+      finish_png();
+    } catch (...) {  // the first error is the one to report
+    }
+    throw;
   }
   // Frames of the sequence left out of this render that no longer match the scene.
   for (int f : scene.frames) {
