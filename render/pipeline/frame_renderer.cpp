@@ -1,7 +1,10 @@
 #include "render/pipeline/frame_renderer.h"
 
 
+#include <future>
+
 #include "sim/core/error.h"
+#include "sim/core/parallel.h"
 #include "sim/core/stopwatch.h"
 #include "render/surface/reconstruct.h"
 #include "render/volume/composite.h"
@@ -55,6 +58,22 @@ ImageRGB8 FrameRenderer::render(const FrameInputs& in, FrameReport* report) {
     scene.solids.push_back(scene_solid(s));
     opaque.append(s.mesh);
   }
+  // The volume pass needs only the meshes, so it runs beside the surface pass, which must stay on
+  // this thread (its OpenGL context's) and leaves part of the processors idle.
+  const bool volume_needed = in.diffuse && volume_pass_needed(*in.diffuse, settings_.volume);
+  VolumeSurfaces surfaces;
+  surfaces.water = water.empty() ? nullptr : &water;
+  surfaces.solids = opaque.empty() ? nullptr : &opaque;
+  VolumeStats volume_stats;
+  auto volume_pass = [&] {
+    const Stopwatch watch;
+    VolumeImage volume = render_volume(*in.diffuse, camera, settings_.volume, surfaces, &volume_stats);
+    r.volume_seconds = watch.seconds();
+    return volume;
+  };
+  std::future<VolumeImage> volume;
+  if (volume_needed && thread_count() > 1) volume = std::async(std::launch::async, volume_pass);
+
   Stopwatch t0;
   SurfacePassStats surface_stats;
   const SurfaceImage background = surface_pass_.render(scene, camera, &surface_stats);
@@ -63,18 +82,12 @@ ImageRGB8 FrameRenderer::render(const FrameInputs& in, FrameReport* report) {
   r.surface_seconds = t0.seconds();
 
   ImageRGBf colour = background.colour;
-  if (in.diffuse && volume_pass_needed(*in.diffuse, settings_.volume)) {
-    t0.restart();
-    VolumeSurfaces surfaces;
-    surfaces.water = water.empty() ? nullptr : &water;
-    surfaces.solids = opaque.empty() ? nullptr : &opaque;
-    VolumeStats volume_stats;
-    const VolumeImage volume = render_volume(*in.diffuse, camera, settings_.volume, surfaces, &volume_stats);
+  if (volume_needed) {
+    const VolumeImage image = volume.valid() ? volume.get() : volume_pass();
     r.volume = true;
     r.spheres = volume_stats.spheres;
-    r.volume_seconds = t0.seconds();
     t0.restart();
-    colour = composite(volume, background.colour);
+    colour = composite(image, background.colour);
     r.composite_seconds = t0.seconds();
   }
   if (report) *report = r;
