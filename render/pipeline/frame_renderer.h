@@ -3,7 +3,8 @@
 // pass (C_b), the Eq. 9 volume pass over the diffuse particles (L, C_d) and the composite
 // C_p = (1 - L) C_d + L C_b. Only what the frame needs runs: no reconstruction when the surface is
 // not drawn or there is no fluid, no GL context when nothing shows geometry, no volume pass when no
-// drawn diffuse particle exists.
+// drawn diffuse particle exists. The volume pass runs on a thread of its own beside the surface pass
+// (one after the other with --threads 1).
 #include <span>
 #include <vector>
 

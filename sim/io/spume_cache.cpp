@@ -236,7 +236,8 @@ HugeBuffer<char> read_whole_file(const std::filesystem::path& path) {
   return bytes;
 }
 
-// A version 2 file in memory, its CRC checked and its header read; the reader stands at the columns.
+// A version 2 file in memory, its CRC checked and its header read; the reader stands at the columns
+// (it views `bytes`, whose moves keep the memory in place).
 struct CompactFile {
   HugeBuffer<char> bytes;
   DiffuseCacheHeader header;
@@ -316,6 +317,14 @@ DiffusePoints read_quantized_diffuse_points(CompactFile& file) {
       fail(r.where(), ": corrupt: the quantization grid reaches ", far, " m on axis ", a, ", beyond a float");
   }
   return dequantize_points(q, n, r.where());
+}
+
+void check_type_counts(const std::array<size_t, kDiffuseTypeCount>& counts, const DiffuseCacheHeader& h,
+                       const std::filesystem::path& path) {
+  for (int t = 0; t < kDiffuseTypeCount; ++t)
+    if (counts[t] != h.count_by_type[t])
+      fail(path.string(), ": header says ", h.count_by_type[t], " ", to_string(DiffuseType(t)),
+           " particles but the data has ", counts[t], " (corrupt)");
 }
 
 }  // namespace
@@ -418,11 +427,7 @@ DiffuseFrame read_diffuse_cache(const std::filesystem::path& path, DiffuseCacheH
   frame.index = h.frame_index;
   frame.time = h.time;
   frame.validate(path.string());  // also rejects types >= 3 before they are counted below
-  const auto counts = frame.count_by_type();
-  for (int t = 0; t < kDiffuseTypeCount; ++t)
-    if (counts[t] != h.count_by_type[t])
-      fail(path.string(), ": header says ", h.count_by_type[t], " ", to_string(DiffuseType(t)),
-           " particles but the data has ", counts[t], " (corrupt)");
+  check_type_counts(frame.count_by_type(), h, path);
   if (header) *header = h;
   return frame;
 }
@@ -447,10 +452,7 @@ DiffusePoints read_diffuse_points(const std::filesystem::path& path, DiffuseCach
   const auto counts = count_types(points.types);
   if (const size_t valid = counts[0] + counts[1] + counts[2]; valid != points.size())
     fail(path.string(), ": corrupt: ", points.size() - valid, " particles have a type outside 0..2 (allowed 0 spray, 1 foam, 2 bubble)");
-  for (int t = 0; t < kDiffuseTypeCount; ++t)
-    if (counts[t] != h.count_by_type[t])
-      fail(path.string(), ": header says ", h.count_by_type[t], " ", to_string(DiffuseType(t)),
-           " particles but the data has ", counts[t], " (corrupt)");
+  check_type_counts(counts, h, path);
   if (header) *header = h;
   return points;
 }
