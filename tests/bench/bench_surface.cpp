@@ -51,6 +51,7 @@ void BM_Reconstruct(benchmark::State& state) {
   state.counters["filter_ms"] = 1e3 * stats.seconds_filter;
   state.counters["field_ms"] = 1e3 * stats.seconds_field;
   state.counters["mesh_ms"] = 1e3 * stats.seconds_mesh;
+  state.counters["smooth_ms"] = 1e3 * stats.seconds_smooth;
 }
 
 // Args: particles along x, y, z; cell size in hundredths of r.
