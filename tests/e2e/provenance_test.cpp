@@ -241,5 +241,30 @@ TEST_F(Provenance, RunSimulatesOnlyAsFarAsTheFramesAskedFor) {
   }
 }
 
+// With two threads the next frame loads while one renders, each PNG is written while the next frame
+// renders, and the volume pass runs beside the surface pass; with one, each in turn. The frames, their
+// order on stdout and their rows of render_stats.csv are the same.
+TEST_F(Provenance, FramesAreTheSameBytesDrawnInTurnOrSideBySide) {
+  ASSERT_EQ(run_spume("simulate " + args()).status, 0);
+  std::vector<std::string> in_turn;
+  for (const char* threads : {"1", "2"}) {
+    const CommandResult r = run_spume("render " + args(std::string("--overwrite --threads ") + threads));
+    ASSERT_EQ(r.status, 0) << r.output;
+    size_t at = 0;
+    for (int k = 1; k <= 8; ++k) {
+      const size_t saved = r.output.find("Saved: " + png(k).string(), at);
+      ASSERT_NE(saved, std::string::npos) << threads << " threads, frame " << k << ":\n" << r.output;
+      at = saved + 1;
+      const std::string bytes = testing::read_file(png(k));
+      if (in_turn.size() < 8)
+        in_turn.push_back(bytes);
+      else
+        EXPECT_TRUE(bytes == in_turn[size_t(k - 1)]) << "frame " << k;
+    }
+    const std::string stats = testing::read_file(out("render_stats.csv"));
+    for (int k = 1; k <= 8; ++k) EXPECT_TRUE(contains(stats, "\n" + std::to_string(k) + ",")) << stats;
+  }
+}
+
 }  // namespace
 }  // namespace spume
