@@ -266,10 +266,10 @@ void check_at_end(const ByteReader& r) {
   if (!r.at_end()) fail(r.where(), ": corrupt: ", r.remaining(), " unexpected trailing bytes after the columns");
 }
 
-DiffuseFrame read_compact_diffuse_cache(const std::filesystem::path& path, DiffuseCacheHeader& h) {
-  CompactFile file = open_compact_diffuse_cache(path);
+// Every column of an open version 2 file, as particles.
+DiffuseFrame decode_compact_diffuse_cache(CompactFile& file) {
   ByteReader& r = *file.columns;
-  h = file.header;
+  const DiffuseCacheHeader& h = file.header;
   const size_t n = size_t(h.count);
   DiffuseFrame frame;
   if (h.quantized) {
@@ -294,9 +294,17 @@ DiffuseFrame read_compact_diffuse_cache(const std::filesystem::path& path, Diffu
   return frame;
 }
 
+void check_type_counts(const std::array<size_t, kDiffuseTypeCount>& counts, const DiffuseCacheHeader& h,
+                       const std::filesystem::path& path) {
+  for (int t = 0; t < kDiffuseTypeCount; ++t)
+    if (counts[t] != h.count_by_type[t])
+      fail(path.string(), ": header says ", h.count_by_type[t], " ", to_string(DiffuseType(t)),
+           " particles but the data has ", counts[t], " (corrupt)");
+}
+
 // Positions and types of a quantized version 2 file; the other columns are stepped over undecoded
 // (the CRC has covered their bytes).
-DiffusePoints read_quantized_diffuse_points(CompactFile& file) {
+DiffusePoints read_quantized_diffuse_points(CompactFile& file, const std::filesystem::path& path) {
   ByteReader& r = *file.columns;
   const DiffuseCacheHeader& h = file.header;
   const size_t n = size_t(h.count);
@@ -316,15 +324,15 @@ DiffusePoints read_quantized_diffuse_points(CompactFile& file) {
     if (!std::isfinite(float(q.q.origin[a])) || !std::isfinite(float(far)))
       fail(r.where(), ": corrupt: the quantization grid reaches ", far, " m on axis ", a, ", beyond a float");
   }
-  return dequantize_points(q, n, r.where());
-}
-
-void check_type_counts(const std::array<size_t, kDiffuseTypeCount>& counts, const DiffuseCacheHeader& h,
-                       const std::filesystem::path& path) {
-  for (int t = 0; t < kDiffuseTypeCount; ++t)
-    if (counts[t] != h.count_by_type[t])
-      fail(path.string(), ": header says ", h.count_by_type[t], " ", to_string(DiffuseType(t)),
-           " particles but the data has ", counts[t], " (corrupt)");
+  DiffusePoints points = dequantize_points(q, n, r.where());
+  points.index = h.frame_index;
+  points.time = h.time;
+  // The header's counts sum to n, so equal counts also mean no type outside 0..2.
+  const auto counts = count_types(points.types);
+  if (const size_t valid = counts[0] + counts[1] + counts[2]; valid != points.size())
+    fail(path.string(), ": corrupt: ", points.size() - valid, " particles have a type outside 0..2 (allowed 0 spray, 1 foam, 2 bubble)");
+  check_type_counts(counts, h, path);
+  return points;
 }
 
 }  // namespace
@@ -418,16 +426,32 @@ CacheBytes encode_diffuse_cache(const DiffuseFrame& frame, double position_step,
   return out;
 }
 
-DiffuseFrame read_diffuse_cache(const std::filesystem::path& path, DiffuseCacheHeader* header) {
-  const uint32_t version = diffuse_cache_version(path);
-  if (version != 0) check_known_diffuse_version(version, path);
-  DiffuseCacheHeader h;
-  DiffuseFrame frame = version == kDiffuseCacheVersion ? read_compact_diffuse_cache(path, h)
-                                                       : read_raw_diffuse_cache(path, h);
+namespace {
+
+// A frame as read, given its header's index and time, and checked (values, types, counts per type).
+DiffuseFrame checked_frame(DiffuseFrame frame, const DiffuseCacheHeader& h, const std::filesystem::path& path) {
   frame.index = h.frame_index;
   frame.time = h.time;
   frame.validate(path.string());  // also rejects types >= 3 before they are counted below
   check_type_counts(frame.count_by_type(), h, path);
+  return frame;
+}
+
+}  // namespace
+
+DiffuseFrame read_diffuse_cache(const std::filesystem::path& path, DiffuseCacheHeader* header) {
+  const uint32_t version = diffuse_cache_version(path);
+  if (version != 0) check_known_diffuse_version(version, path);
+  DiffuseCacheHeader h;
+  DiffuseFrame frame;
+  if (version == kDiffuseCacheVersion) {
+    CompactFile file = open_compact_diffuse_cache(path);
+    h = file.header;
+    frame = decode_compact_diffuse_cache(file);
+  } else {
+    frame = read_raw_diffuse_cache(path, h);
+  }
+  frame = checked_frame(std::move(frame), h, path);
   if (header) *header = h;
   return frame;
 }
@@ -435,26 +459,20 @@ DiffuseFrame read_diffuse_cache(const std::filesystem::path& path, DiffuseCacheH
 DiffusePoints read_diffuse_points(const std::filesystem::path& path, DiffuseCacheHeader* header) {
   const uint32_t version = diffuse_cache_version(path);
   if (version != 0) check_known_diffuse_version(version, path);
-  DiffusePoints points;
-  DiffuseCacheHeader h;
-  if (version == kDiffuseCacheVersion && peek_diffuse_cache(path).quantized) {
+  if (version == kDiffuseCacheVersion) {
     CompactFile file = open_compact_diffuse_cache(path);
-    h = file.header;
-    points = read_quantized_diffuse_points(file);
-  } else {  // exact or version 1: their columns are the frame's own arrays, read whole
-    DiffuseFrame frame = read_diffuse_cache(path, &h);
-    points.positions = std::move(frame.positions);
-    points.types = std::move(frame.types);
+    DiffusePoints points;
+    if (file.header.quantized) {
+      points = read_quantized_diffuse_points(file, path);
+    } else {  // exact: the columns are the frame's own arrays, read whole
+      DiffuseFrame frame = checked_frame(decode_compact_diffuse_cache(file), file.header, path);
+      points = {frame.index, frame.time, std::move(frame.positions), std::move(frame.types)};
+    }
+    if (header) *header = file.header;
+    return points;
   }
-  points.index = h.frame_index;
-  points.time = h.time;
-  // The header's counts sum to n, so equal counts also mean no type outside 0..2.
-  const auto counts = count_types(points.types);
-  if (const size_t valid = counts[0] + counts[1] + counts[2]; valid != points.size())
-    fail(path.string(), ": corrupt: ", points.size() - valid, " particles have a type outside 0..2 (allowed 0 spray, 1 foam, 2 bubble)");
-  check_type_counts(counts, h, path);
-  if (header) *header = h;
-  return points;
+  DiffuseFrame frame = read_diffuse_cache(path, header);  // version 1
+  return DiffusePoints{frame.index, frame.time, std::move(frame.positions), std::move(frame.types)};
 }
 
 DiffuseCacheHeader peek_diffuse_cache(const std::filesystem::path& path) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "sim/core/error.h"
+#include "tests/support/crc_trailer.h"
 #include "tests/support/error_of.h"
 #include "tests/support/files.h"
 #include "tests/support/temp_dir.h"
@@ -34,13 +35,6 @@ T at(const std::string& bytes, size_t offset) {  // little-endian host, like the
 template <typename T>
 void put(std::string& bytes, size_t offset, T v) {
   std::memcpy(bytes.data() + offset, &v, sizeof(T));
-}
-
-// Rewrites the CRC trailer so a deliberately edited payload reaches the value checks.
-std::string with_fixed_crc(std::string bytes) {
-  const uint32_t crc = uint32_t(crc32(0, reinterpret_cast<const Bytef*>(bytes.data()), uInt(bytes.size() - 4)));
-  put(bytes, bytes.size() - 4, crc);
-  return bytes;
 }
 
 FluidFrame sample_fluid() {

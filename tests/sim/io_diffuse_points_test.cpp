@@ -3,7 +3,6 @@
 // skipped column is really skipped. io_diffuse_quantized_test.cpp checks that its particles equal the
 // whole frame's on every round trip there.
 #include <gtest/gtest.h>
-#include <zlib.h>
 
 #include <cstring>
 #include <random>
@@ -12,6 +11,7 @@
 
 #include "sim/io/column_codec.h"
 #include "sim/io/spume_cache.h"
+#include "tests/support/crc_trailer.h"
 #include "tests/support/error_of.h"
 #include "tests/support/files.h"
 #include "tests/support/temp_dir.h"
@@ -55,12 +55,6 @@ std::vector<size_t> column_starts(const std::string& file) {
   }
   EXPECT_EQ(pos, file.size() - 4);
   return at;
-}
-
-std::string with_fixed_crc(std::string bytes) {
-  const uint32_t crc = uint32_t(crc32(0, reinterpret_cast<const Bytef*>(bytes.data()), uInt(bytes.size() - 4)));
-  std::memcpy(bytes.data() + bytes.size() - 4, &crc, 4);
-  return bytes;
 }
 
 struct Written {
