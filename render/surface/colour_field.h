@@ -42,7 +42,16 @@ class ColourField {
   void gather(size_t b, float margin, std::vector<Vec3f>& out) const;
 
  private:
-  void splat(size_t b, std::span<const Vec3f> candidates, float* out) const;
+  // Bricks are sampled kGroup^3 at a time into one dense lattice of kG^3 points (128 KiB): a
+  // kernel's box (9 points a side at the default cell) nearly always spans two bricks per axis, so
+  // cut per brick it made 8 short pieces; per group about 2 (1.25 a side), and a group gathers its
+  // particles once. Groups of 2 bricks a side took 385 ms against 312 on the lighthouse's 643k.
+  static constexpr int kGroup = 4;
+  static constexpr int kG = kGroup * kB;
+  // Particles within h (grown by `margin`) of the lattice box of the `bricks`^3 bricks from `first`.
+  void gather(const std::array<int, 3>& first, int bricks, float margin, std::vector<Vec3f>& out) const;
+  // Adds every candidate's kernel to the kG^3 lattice points of the group whose first brick is `first`.
+  void splat(const std::array<int, 3>& first, std::span<const Vec3f> candidates, float* dense) const;
 
   float h_, cell_, scale_;
   int reach_;  // bricks around a brick that can hold particles reaching it (+ one cell)
