@@ -58,7 +58,7 @@ ColourField::ColourField(std::span<const Vec3f> points, float particle_radius, f
     if (i == 0 || grouped[i].first != grouped[i - 1].first) group_start.push_back(i);
   group_start.push_back(grouped.size());
 
-  values_.resize(keys_.size() * kBrickPoints);
+  values_.allocate(keys_.size() * kBrickPoints);
   min_.resize(keys_.size()), max_.resize(keys_.size());
   parallel_for(group_start.size() - 1, 1, [&](size_t g0, size_t g1) {
     std::vector<Vec3f> candidates;

@@ -12,6 +12,7 @@
 
 #include "sim/core/vec.h"
 #include "render/surface/sparse_bins.h"
+#include "render/volume/huge_buffer.h"
 
 namespace spume {
 
@@ -58,7 +59,8 @@ class ColourField {
   Vec3f origin_;
   SparseBins particles_;        // particles binned by brick
   std::vector<uint64_t> keys_;  // bricks, ascending
-  std::vector<float> values_, min_, max_;
+  HugePageArray<float> values_;  // every point written once, so not zero-filled first
+  std::vector<float> min_, max_;
 };
 
 }  // namespace spume
