@@ -58,8 +58,7 @@ namespace {
 
 // Per ray of the tile, room for one chord per candidate sphere: the rectangles summed by a 2D
 // difference array, so the chord loop below stores without a size check and without a branch.
-void reserve_chords(const TileRays& t, const std::vector<BinnedSphere>& spheres, BinScratch& s) {
-  const size_t w = size_t(t.w), h = size_t(t.h), spp = size_t(t.spp);
+void reserve_chords(size_t w, size_t h, size_t spp, const std::vector<BinnedSphere>& spheres, BinScratch& s) {
   std::array<uint32_t, (kTile + 1) * (kTile + 1)> diff{};
   for (const BinnedSphere& sp : spheres) {
     const size_t x0 = size_t(sp.x0()), x1 = size_t(sp.x1()) + 1, y0 = size_t(sp.y0()), y1 = size_t(sp.y1()) + 1;
@@ -68,6 +67,7 @@ void reserve_chords(const TileRays& t, const std::vector<BinnedSphere>& spheres,
   }
   s.ray_start.resize(w * h * spp + 1);
   s.ray_end.resize(w * h * spp);
+  s.wanted.resize(w * h * spp);
   std::array<uint32_t, kTile> column{};  // running sums down each column
   uint32_t total = 0;
   for (size_t y = 0; y < h; ++y) {
@@ -78,6 +78,7 @@ void reserve_chords(const TileRays& t, const std::vector<BinnedSphere>& spheres,
       for (size_t k = 0; k < spp; ++k) {
         const size_t ri = (y * w + x) * spp + k;
         s.ray_start[ri] = s.ray_end[ri] = total;
+        s.wanted[ri] = column[x] > 0;
         total += column[x];
       }
     }
@@ -150,10 +151,14 @@ void tile_chords(const TileRays& t, const std::vector<BinnedSphere>& spheres, co
 
 }  // namespace
 
+const std::vector<uint8_t>& count_tile_candidates(int ox, int oy, int w, int h, int spp, BinScratch& s) {
+  reserve_chords(size_t(w), size_t(h), size_t(spp), s.tiles[size_t((oy / kTile) * 2 + ox / kTile)], s);
+  return s.wanted;
+}
+
 size_t trace_bin_tile(const TileRays& t, int ox, int oy, const Vec3d& origin, const std::array<double, kDiffuseTypeCount>& r2,
                       const VolumeShading& shading, BinScratch& s, std::vector<RaySample>& out) {
   const std::vector<BinnedSphere>& spheres = s.tiles[size_t((oy / kTile) * 2 + ox / kTile)];
-  reserve_chords(t, spheres, s);
   tile_chords(t, spheres, origin, r2, s);
   size_t found = 0;
   for (size_t i = 0; i < t.rays.size(); ++i) {

@@ -19,6 +19,7 @@ struct BinScratch {
   std::vector<float> depth;
   std::vector<uint32_t> bucket, bucket_of;
   std::vector<uint32_t> ray_start, ray_end;  // per ray of the tile: its chords in `chords`
+  std::vector<uint8_t> wanted;               // per ray of the tile: 1 when it has a candidate
   std::vector<Interval> chords;
   std::vector<double> ray_soa;               // the tile's rays as columns of doubles
 };
@@ -26,9 +27,15 @@ struct BinScratch {
 // The bin [b, e) near to far, split into the lists of its 2x2 tiles (s.tiles).
 void order_bin(const BinnedSphere* b, const BinnedSphere* e, const Camera& cam, BinScratch& s);
 
-// Transmittance and colour of the tile's rays `t`, the tile at (ox, oy) pixels inside the bin last
-// ordered by order_bin. origin: the camera position; r2: squared radius per type. Returns the
-// number of chords found.
+// The candidate spheres of each ray of the w x h tile at (ox, oy) pixels inside the bin last ordered
+// by order_bin (spp rays a pixel), counted from their rectangles. Returns the tile's `wanted` mask:
+// 1 for a ray some sphere may touch. A ray no sphere touches has no chord, so its sample is the
+// empty one whatever surfaces it meets: make_tile_rays need not trace it.
+const std::vector<uint8_t>& count_tile_candidates(int ox, int oy, int w, int h, int spp, BinScratch& s);
+
+// Transmittance and colour of the tile's rays `t`, the tile at (ox, oy) whose candidates were
+// counted last. origin: the camera position; r2: squared radius per type. Returns the number of
+// chords found.
 size_t trace_bin_tile(const TileRays& t, int ox, int oy, const Vec3d& origin, const std::array<double, kDiffuseTypeCount>& r2,
                       const VolumeShading& shading, BinScratch& s, std::vector<RaySample>& out);
 

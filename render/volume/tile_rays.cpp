@@ -28,7 +28,7 @@ EyeRayDirections::EyeRayDirections(const Camera& camera) : width_(camera.width),
   aspect_ = float(camera.width) / float(camera.height);
 }
 
-void make_tile_rays(const TileRayParams& p, int x0, int y0, int w, int h, TileRays& out) {
+void make_tile_rays(const TileRayParams& p, int x0, int y0, int w, int h, TileRays& out, const uint8_t* wanted) {
   const Camera& cam = *p.camera;
   const int spp = p.samples_per_pixel;
   out.x0 = x0, out.y0 = y0, out.w = w, out.h = h, out.spp = spp;
@@ -39,7 +39,14 @@ void make_tile_rays(const TileRayParams& p, int x0, int y0, int w, int h, TileRa
   for (int ly = 0; ly < h; ++ly)
     for (int lx = 0; lx < w; ++lx)
       for (int s = 0; s < spp; ++s) {
-        TileRay& r = out.rays[(size_t(ly) * size_t(w) + size_t(lx)) * size_t(spp) + size_t(s)];
+        const size_t index = (size_t(ly) * size_t(w) + size_t(lx)) * size_t(spp) + size_t(s);
+        TileRay& r = out.rays[index];
+        if (wanted && !wanted[index]) {
+          r.direction_f = Vec3f::Zero(), r.direction = Vec3d::Zero();
+          r.t_in = 1.0, r.t_out = 0.0;  // a miss
+          r.water_begin = r.water_end = uint32_t(out.water.size());
+          continue;
+        }
         const uint64_t pixel = uint64_t(y0 + ly) * uint64_t(cam.width) + uint64_t(x0 + lx);
         float u, v;
         sample_offset(p.seed, p.frame, pixel, uint32_t(s), spp, u, v);

@@ -61,7 +61,9 @@ struct TileRayParams {
   int samples_per_pixel;
 };
 
-void make_tile_rays(const TileRayParams& p, int x0, int y0, int w, int h, TileRays& out);
+// The rays of the w x h tile at (x0, y0). With `wanted` (one flag a ray, in the rays' order), a ray
+// whose flag is 0 is left out, as a miss, and never traced against the surfaces.
+void make_tile_rays(const TileRayParams& p, int x0, int y0, int w, int h, TileRays& out, const uint8_t* wanted = nullptr);
 
 // The water stretches of ray r of t.
 inline WaterView water_of(const TileRays& t, const TileRay& r) {

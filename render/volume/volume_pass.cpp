@@ -241,7 +241,10 @@ VolumeImage render_volume(DiffuseView frame, const Camera& camera, const VolumeS
         for (int ox = 0; ox < kBin && bx + ox < camera.width; ox += kTile) {
           const int x0 = bx + ox, y0 = by + oy;
           const int w = std::min(kTile, camera.width - x0), h = std::min(kTile, camera.height - y0);
-          make_tile_rays(pass.ray_params, x0, y0, w, h, s.tile);
+          // With screen bins, only rays some sphere may touch are traced against the surfaces (at the
+          // lighthouse's 15M, 30% of those that reach the diffuse bounds).
+          const uint8_t* wanted = pass.bins ? count_tile_candidates(ox, oy, w, h, spp, s.bin).data() : nullptr;
+          make_tile_rays(pass.ray_params, x0, y0, w, h, s.tile, wanted);
           samples.assign(s.tile.rays.size(), RaySample{});
           size_t n = 0;
           if (pass.grids) {
