@@ -12,7 +12,7 @@
 
 #include "sim/core/vec.h"
 #include "render/surface/sparse_bins.h"
-#include "render/volume/huge_buffer.h"
+#include "sim/core/huge_page_array.h"
 
 namespace spume {
 

@@ -12,7 +12,7 @@
 
 #include "render/camera/camera.h"
 #include "sim/core/frames.h"
-#include "render/volume/huge_buffer.h"
+#include "sim/core/huge_page_array.h"
 
 namespace spume {
 

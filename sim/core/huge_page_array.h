@@ -1,10 +1,11 @@
 #pragma once
-// Large per-frame arrays (screen bins: 16 B x 1.2 N; the colour field's lattice) without a
-// zero-fill pass and, on Linux, backed by transparent huge pages (the kernel here runs THP in
-// madvise mode): a 500 MB array otherwise costs ~125k page faults, a measurable share of a
-// 15M-sphere frame (the lighthouse's 44 MB lattice: 455 -> 336 ms of the field on one core). Not named
-// HugeBuffer: sim/io/huge_buffer.h has a different spume::HugeBuffer, and two class templates of
-// one name in one program break the one-definition rule (the linker would merge same-T members).
+// Large per-frame arrays (the renderer's screen bins, 16 B x 1.2 N; its colour field's lattice; its
+// marching-cubes cases) without a zero-fill pass and, on Linux, backed by transparent huge pages (the
+// kernel here runs THP in madvise mode): a 500 MB array otherwise costs ~125k page faults, a
+// measurable share of a 15M-sphere frame (the lighthouse's 44 MB lattice: 455 -> 336 ms of the field
+// on one core). Not named HugeBuffer: sim/io/huge_buffer.h has a different spume::HugeBuffer, and two
+// class templates of one name in one program break the one-definition rule (the linker would merge
+// same-T members).
 #include <cstddef>
 #include <cstdlib>
 #include <new>
