@@ -62,7 +62,25 @@ bool SphereProjector::pixel_rect(const Vec3f& centre, float radius, int& x0, int
   return true;
 }
 
+namespace {
+const bool kHasAvx2 = __builtin_cpu_supports("avx2");
+}  // namespace
+
 void SphereProjector::pixel_rects(const Vec3f* centres, const float* radii, size_t n, Rects& out) const {
+  if (kHasAvx2)
+    pixel_rects_avx2(centres, radii, n, out);
+  else
+    pixel_rects_loop(centres, radii, n, out);
+}
+
+__attribute__((target("avx2"))) void SphereProjector::pixel_rects_avx2(const Vec3f* centres, const float* radii, size_t n,
+                                                                       Rects& out) const {
+  pixel_rects_loop(centres, radii, n, out);
+}
+
+// Inlined into both callers, so each is vectorised for its own instruction set.
+__attribute__((always_inline)) inline void SphereProjector::pixel_rects_loop(const Vec3f* centres, const float* radii, size_t n,
+                                                                             Rects& out) const {
   // pixel_rect's expressions in its order, as selects instead of early returns.
   const float ox = origin_.x(), oy = origin_.y(), oz = origin_.z();
   const float cx = 0.5f * float(width_), cy = 0.5f * float(height_), w = float(width_), h = float(height_);
