@@ -136,7 +136,8 @@ TriangleMesh extract_iso_surface(const ColourField& field, float iso) {
 
   // Pass 3: triangles, from the cases pass 1 kept. A corner on the brick's upper faces belongs to an
   // upper neighbour's edge: the vertices of the block's edges are looked up in a table filled from the
-  // edge lists of the brick and its neighbours (a binary search a corner took twice as long).
+  // edge lists of the brick and its neighbours (with a binary search a corner and the cases computed
+  // again, the lighthouse's mesh took 470 ms on one core instead of 345).
   parallel_for(bricks, 8, [&](size_t b0, size_t b1) {
     constexpr uint32_t kNone = UINT32_MAX;
     std::vector<uint32_t> vertex_of(size_t(kL * kL * kL * 3));  // (block point, axis) -> vertex
