@@ -2,11 +2,27 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstring>
 
 #include "sim/core/error.h"
 #include "sim/core/parallel.h"
 
 namespace spume {
+namespace {
+
+// Whether any of the n floats at x is infinite or NaN (all exponent bits set): one test a value and no
+// branch, so the loop vectorizes.
+uint32_t any_non_finite(const float* x, size_t n) {
+  uint32_t found = 0;
+  for (size_t k = 0; k < n; ++k) {
+    uint32_t bits;
+    std::memcpy(&bits, x + k, sizeof bits);
+    found |= uint32_t((bits & 0x7f800000u) == 0x7f800000u);
+  }
+  return found;
+}
+
+}  // namespace
 
 const char* to_string(DiffuseType t) {
   switch (t) {
@@ -94,17 +110,31 @@ void DiffuseFrame::validate(const std::string& where) const {
     return !finite(positions[i]) || !finite(velocities[i]) || !std::isfinite(lifetimes[i]) ||
            uint8_t(types[i]) >= kDiffuseTypeCount;
   };
+  // Blocks checked without a branch per value (vectorized), then the block holding a bad particle one
+  // particle at a time.
+  auto block_is_bad = [&](size_t b, size_t e) {
+    const size_t m = e - b;
+    uint32_t found = any_non_finite(positions[b].data(), 3 * m) | any_non_finite(velocities[b].data(), 3 * m) |
+                     any_non_finite(&lifetimes[b], m);
+    for (size_t i = b; i < e; ++i) found |= uint32_t(uint8_t(types[i]) >= kDiffuseTypeCount);
+    return found != 0;
+  };
   // In parallel (every cache write checks its frame: 50 ms at 14M on one core), reporting the first
   // bad particle whatever the split: each chunk offers its first, the smallest wins.
+  constexpr size_t kBlock = 4096;
   std::atomic<size_t> first{n};
   parallel_for(n, 1 << 16, [&](size_t b, size_t e) {
-    for (size_t i = b; i < e && i < first.load(std::memory_order_relaxed); ++i)
-      if (bad(i)) {
-        size_t seen = first.load();
-        while (i < seen && !first.compare_exchange_weak(seen, i)) {
+    for (size_t block = b; block < e && block < first.load(std::memory_order_relaxed); block += kBlock) {
+      const size_t block_end = std::min(e, block + kBlock);
+      if (!block_is_bad(block, block_end)) continue;
+      for (size_t i = block; i < block_end; ++i)
+        if (bad(i)) {
+          size_t seen = first.load();
+          while (i < seen && !first.compare_exchange_weak(seen, i)) {
+          }
+          return;
         }
-        return;
-      }
+    }
   });
   const size_t i = first.load();
   if (i == n) return;

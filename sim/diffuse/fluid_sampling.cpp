@@ -28,8 +28,9 @@ void sample_fluid(const NeighbourGrid& grid, std::span<const Vec3f> sorted_motio
   const uint32_t outside = halves ? grid.key_count() * 8 : grid.key_count();
   out.keys.resize(n);
   parallel_for(n, 1 << 14, [&](size_t b, size_t e) {
+    if (halves) grid.octant_keys(positions.subspan(b, e - b), std::span(out.keys).subspan(b, e - b));
     for (size_t i = b; i < e; ++i) {
-      const uint32_t k = halves ? grid.octant_key_of(positions[i]) : grid.key_of(positions[i]);
+      const uint32_t k = halves ? out.keys[i] : grid.key_of(positions[i]);
       out.keys[i] = k == NeighbourGrid::kOutside ? outside : k;
     }
   });

@@ -76,20 +76,31 @@ uint32_t NeighbourGrid::key_of(const Vec3f& p) const {
   return (uint32_t(c[2]) * uint32_t(dims_[1]) + uint32_t(c[1])) * uint32_t(dims_[0]) + uint32_t(c[0]);
 }
 
-uint32_t NeighbourGrid::octant_key_of(const Vec3f& p) const {
-  if (sorted_points_.empty()) return kOutside;
-  int c[3];
-  uint32_t octant = 0;
-  for (int a = 0; a < 3; ++a) {
-    // The same cell as key_of (same expression), then the half of it from the fractional part.
-    const float u = (p[a] - origin_[a]) / cell_;
-    const float f = std::floor(u);
-    if (!(f >= 0.0f) || f >= float(dims_[a])) return kOutside;
-    c[a] = int(f);
-    octant |= (u - f >= 0.5f ? 1u : 0u) << a;
+// A batch without branches, built for AVX2 and baseline x86-64 and picked at load time: per point it
+// is key_of's expression (so the same cell), 8 points at a time. One call per point took 4% of a
+// 15M-particle diffuse frame's CPU time.
+__attribute__((target_clones("avx2", "default"))) void NeighbourGrid::octant_keys(std::span<const Vec3f> points,
+                                                                                  std::span<uint32_t> keys) const {
+  if (sorted_points_.empty()) {
+    std::fill(keys.begin(), keys.end(), kOutside);
+    return;
   }
-  const uint32_t key = (uint32_t(c[2]) * uint32_t(dims_[1]) + uint32_t(c[1])) * uint32_t(dims_[0]) + uint32_t(c[0]);
-  return key * 8 + octant;
+  const float* xyz = points.empty() ? nullptr : points[0].data();
+  const float cell = cell_;
+  const float ox = origin_[0], oy = origin_[1], oz = origin_[2];
+  const float nx = float(dims_[0]), ny = float(dims_[1]), nz = float(dims_[2]);
+  const uint32_t row = uint32_t(dims_[0]), layer = uint32_t(dims_[0]) * uint32_t(dims_[1]);
+  for (size_t i = 0; i < points.size(); ++i) {
+    const float ux = (xyz[3 * i] - ox) / cell, uy = (xyz[3 * i + 1] - oy) / cell, uz = (xyz[3 * i + 2] - oz) / cell;
+    const float fx = std::floor(ux), fy = std::floor(uy), fz = std::floor(uz);
+    // !(f >= 0) also catches NaN; an outside point's cell is taken as 0 so the conversion stays defined.
+    const bool inside = fx >= 0.0f && fx < nx && fy >= 0.0f && fy < ny && fz >= 0.0f && fz < nz;
+    const uint32_t cx = uint32_t(int(inside ? fx : 0.0f)), cy = uint32_t(int(inside ? fy : 0.0f)),
+                   cz = uint32_t(int(inside ? fz : 0.0f));
+    const uint32_t octant = (ux - fx >= 0.5f ? 1u : 0u) | (uy - fy >= 0.5f ? 2u : 0u) | (uz - fz >= 0.5f ? 4u : 0u);
+    const uint32_t key = (cz * layer + cy * row + cx) * 8 + octant;
+    keys[i] = inside ? key : kOutside;
+  }
 }
 
 template <int reach>

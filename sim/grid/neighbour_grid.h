@@ -37,9 +37,10 @@ class NeighbourGrid {
   // (then p has no neighbour within h).
   uint32_t key_of(const Vec3f& p) const;
   uint32_t key_count() const { return uint32_t(dims_[0]) * dims_[1] * dims_[2]; }
-  // key_of(p) * 8 plus which half of its cell p lies in along x (bit 0), y (bit 1) and z (bit 2);
-  // kOutside as key_of. Sorting by it groups points by half-cell. Needs key_count() <= kMaxOctantKeys.
-  uint32_t octant_key_of(const Vec3f& p) const;
+  // keys[i] = key_of(points[i]) * 8 plus which half of its cell the point lies in along x (bit 0),
+  // y (bit 1) and z (bit 2); kOutside as key_of. Sorting by it groups points by half-cell. Needs
+  // key_count() <= kMaxOctantKeys; keys.size() == points.size().
+  void octant_keys(std::span<const Vec3f> points, std::span<uint32_t> keys) const;
   static constexpr uint32_t kMaxOctantKeys = (1u << 29) - 1;
 
   // Occupied cells in sorted order: cell c holds sorted points [cell_begin(c), cell_begin(c + 1)).

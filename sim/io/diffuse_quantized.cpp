@@ -6,6 +6,7 @@
 
 #include "sim/core/error.h"
 #include "sim/core/parallel.h"
+#include "sim/io/diffuse_packing.h"
 
 namespace spume {
 namespace {
@@ -13,19 +14,6 @@ namespace {
 constexpr double kMaxSteps = 2147483647.0;  // 2^31 - 1 steps along an axis
 constexpr uint64_t kMaxCells = uint64_t(1) << 62;
 constexpr size_t kGrain = 1 << 14;
-
-// One particle quantized, with its cell key when the frame has at most 2^32 cells: 24 bytes that the
-// sort moves whole, so that no pass reads the frame at random (a frame's particles away from the
-// fluid come in no spatial order).
-struct Packed {
-  uint64_t id;
-  int16_t velocity[3];
-  uint16_t life;
-  uint8_t offset[3];
-  uint8_t type;
-  uint32_t key;
-};
-static_assert(sizeof(Packed) == 24);
 
 // Stable order of 64-bit `keys` (serial LSD radix sort, 16 bits a pass, as many passes as max_key
 // needs): for frames of more than 2^32 cells, which a simulation's frames never have.
@@ -46,14 +34,14 @@ HugeBuffer<uint32_t> stable_order(const HugeBuffer<uint64_t>& keys, uint64_t max
 // Stable parallel LSD radix sort of the records by their 32-bit key (its low `bits` bits), over fixed
 // chunks, each counted and scattered by one task: a stable sort has one answer, so neither the
 // chunking nor the thread count can change it.
-void radix_sort(HugeBuffer<Packed>& records, int bits) {
+void radix_sort(HugeBuffer<PackedDiffuse>& records, int bits) {
   const size_t n = records.size();
   if (bits == 0 || n < 2) return;  // one cell: the frame's order
   const int passes = (bits + 10) / 11, digit_bits = (bits + passes - 1) / passes;
   const uint32_t buckets = 1u << digit_bits, mask = buckets - 1;
   const size_t chunks = std::clamp<size_t>(n / (1 << 16), 1, 256), chunk = (n + chunks - 1) / chunks;
   std::vector<uint32_t> next(chunks * buckets);
-  HugeBuffer<Packed> scratch(n);
+  HugeBuffer<PackedDiffuse> scratch(n);
   for (int pass = 0; pass < passes; ++pass) {
     const int shift = pass * digit_bits;
     parallel_for(chunks, 1, [&](size_t cb, size_t ce) {
@@ -112,22 +100,47 @@ struct Bounds {
   }
 };
 
-// Minima and maxima are exact whatever the split, so the chunks may be any.
+// Minima and maxima are exact whatever the split, so the chunks may be any. They are taken in float,
+// the values' own type (converting to double keeps their order), over the flat x, y, z floats 24 at a
+// time, so that the loops vectorize: float k of a run of 24 is axis k % 3 (24 = 8 lanes x 3 axes).
 Bounds frame_bounds(const DiffuseFrame& frame) {
+  constexpr size_t kRun = 24;
   const size_t n = frame.size(), chunks = std::max<size_t>(1, n / kGrain);
   std::vector<Bounds> part(chunks);
   parallel_for(chunks, 1, [&](size_t cb, size_t ce) {
     for (size_t c = cb; c < ce; ++c) {
-      Bounds& b = part[c];
-      for (size_t i = c * n / chunks, end = (c + 1) * n / chunks; i < end; ++i) {
-        for (int a = 0; a < 3; ++a) {
-          b.lo[a] = std::min(b.lo[a], double(frame.positions[i][a]));
-          b.hi[a] = std::max(b.hi[a], double(frame.positions[i][a]));
-          b.vmax = std::max(b.vmax, std::abs(double(frame.velocities[i][a])));
+      const size_t begin = c * n / chunks, end = (c + 1) * n / chunks;
+      float lo[kRun], hi[kRun], vmax[kRun];
+      std::fill_n(lo, kRun, INFINITY), std::fill_n(hi, kRun, -INFINITY), std::fill_n(vmax, kRun, 0.0f);
+      float lmin = INFINITY, lmax = -INFINITY;
+      if (begin < end) {
+        const float* x = frame.positions[begin].data();  // 3 (end - begin) floats
+        const float* v = frame.velocities[begin].data();
+        const size_t floats = 3 * (end - begin), runs = floats / kRun;
+        for (size_t r = 0; r < runs; ++r)
+          for (size_t k = 0; k < kRun; ++k) {
+            const float xk = x[r * kRun + k], vk = std::abs(v[r * kRun + k]);
+            lo[k] = std::min(lo[k], xk), hi[k] = std::max(hi[k], xk), vmax[k] = std::max(vmax[k], vk);
+          }
+        for (size_t f = runs * kRun; f < floats; ++f) {  // the rest, by the same rule: float f is axis f % 3
+          const size_t k = f % 3;
+          lo[k] = std::min(lo[k], x[f]), hi[k] = std::max(hi[k], x[f]), vmax[k] = std::max(vmax[k], std::abs(v[f]));
         }
-        b.lmin = std::min(b.lmin, double(frame.lifetimes[i]));
-        b.lmax = std::max(b.lmax, double(frame.lifetimes[i]));
+        float lmins[8], lmaxs[8];
+        std::fill_n(lmins, 8, INFINITY), std::fill_n(lmaxs, 8, -INFINITY);
+        const float* life = &frame.lifetimes[begin];
+        const size_t count = end - begin;
+        for (size_t r = 0; r + 8 <= count; r += 8)
+          for (size_t k = 0; k < 8; ++k) lmins[k] = std::min(lmins[k], life[r + k]), lmaxs[k] = std::max(lmaxs[k], life[r + k]);
+        for (size_t i = count / 8 * 8; i < count; ++i) lmins[0] = std::min(lmins[0], life[i]), lmaxs[0] = std::max(lmaxs[0], life[i]);
+        for (size_t k = 0; k < 8; ++k) lmin = std::min(lmin, lmins[k]), lmax = std::max(lmax, lmaxs[k]);
       }
+      Bounds& b = part[c];
+      for (size_t k = 0; k < kRun; ++k) {
+        b.lo[k % 3] = std::min(b.lo[k % 3], double(lo[k])), b.hi[k % 3] = std::max(b.hi[k % 3], double(hi[k]));
+        b.vmax = std::max(b.vmax, double(vmax[k]));
+      }
+      b.lmin = double(lmin), b.lmax = double(lmax);
     }
   });
   Bounds all;
@@ -160,40 +173,21 @@ std::optional<QuantizedDiffuse> quantize_diffuse(const DiffuseFrame& frame, doub
   q.life_origin = bounds.lmin;
   q.life_step = (bounds.lmax - bounds.lmin) / 65535.0;
 
-  // Steps along each axis, as the cell keys and the offsets both use them.
-  constexpr uint32_t kOffsetMask = (1u << kCellOffsetBits) - 1;
   // Reciprocals: a product's rounding (half an ulp of a double) is far below the float rounding the
   // stated bounds allow for.
-  const double per_step = 1.0 / position_step;
-  const double per_velocity_step = q.velocity_step > 0.0 ? 1.0 / q.velocity_step : 0.0;
-  const double per_life_step = q.life_step > 0.0 ? 1.0 / q.life_step : 0.0;
-  auto steps_of = [&](const Vec3f& x, int a) {
-    const int64_t s = round_to_int((double(x[a]) - q.origin[a]) * per_step);
-    return uint64_t(std::clamp<int64_t>(s, 0, int64_t(qmax[a])));
-  };
+  PackingSteps steps;
+  for (int a = 0; a < 3; ++a) steps.origin[a] = q.origin[a], steps.max_steps[a] = double(qmax[a]);
+  steps.per_step = 1.0 / position_step;
+  steps.per_velocity_step = q.velocity_step > 0.0 ? 1.0 / q.velocity_step : 0.0;
+  steps.life_origin = q.life_origin;
+  steps.per_life_step = q.life_step > 0.0 ? 1.0 / q.life_step : 0.0;
+  steps.cells = q.cells;
   // Each particle's quantized values and cell key, in the frame's order.
-  HugeBuffer<Packed> records(n);
+  HugeBuffer<PackedDiffuse> records(n);
   const bool narrow = cells - 1 <= UINT32_MAX;
   HugeBuffer<uint64_t> wide_keys(narrow ? 0 : n);
   parallel_for(n, kGrain, [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i) {
-      Packed& p = records[i];
-      uint64_t cell[3];
-      for (int a = 0; a < 3; ++a) {
-        const uint64_t steps = steps_of(frame.positions[i], a);
-        cell[a] = steps >> kCellOffsetBits;
-        p.offset[a] = uint8_t(steps & kOffsetMask);
-        const double v = double(frame.velocities[i][a]) * per_velocity_step;
-        p.velocity[a] = int16_t(std::clamp<int64_t>(round_to_int(v), -32767, 32767));
-      }
-      const double l = (double(frame.lifetimes[i]) - q.life_origin) * per_life_step;
-      p.life = uint16_t(std::clamp<int64_t>(round_to_int(l), 0, 65535));
-      p.id = frame.ids[i];
-      p.type = uint8_t(frame.types[i]);
-      const uint64_t key = cell[0] + q.cells[0] * (cell[1] + uint64_t(q.cells[1]) * cell[2]);
-      p.key = uint32_t(key);
-      if (!narrow) wide_keys[i] = key;
-    }
+    pack_diffuse(frame, steps, begin, end, records.data(), narrow ? nullptr : wide_keys.data());
   });
   // Into cell order (stable: within a cell the frame's order).
   if (narrow) {
@@ -201,7 +195,7 @@ std::optional<QuantizedDiffuse> quantize_diffuse(const DiffuseFrame& frame, doub
     occupied_cells(n, [&](size_t k) { return uint64_t(records[k].key); }, out);
   } else {
     const HugeBuffer<uint32_t> order = stable_order(wide_keys, cells - 1);
-    HugeBuffer<Packed> sorted(n);
+    HugeBuffer<PackedDiffuse> sorted(n);
     parallel_for(n, kGrain, [&](size_t begin, size_t end) {
       for (size_t k = begin; k < end; ++k) sorted[k] = records[order[k]];
     });
@@ -219,7 +213,7 @@ std::optional<QuantizedDiffuse> quantize_diffuse(const DiffuseFrame& frame, doub
     for (size_t b = begin; b < end; ++b) {
       uint8_t types = 0;
       for (size_t k = 4 * b; k < std::min(n, 4 * b + 4); ++k) {
-        const Packed& p = records[k];
+        const PackedDiffuse& p = records[k];
         for (int a = 0; a < 3; ++a) out.offsets[a * n + k] = p.offset[a], out.velocities[a * n + k] = p.velocity[a];
         out.lifetimes[k] = p.life;
         out.ids[k] = p.id;

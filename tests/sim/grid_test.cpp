@@ -62,6 +62,47 @@ TEST(NeighbourGrid, FarOutlierKeepsQueriesExactWithACoarserGrid) {
   EXPECT_EQ(found, 1);
 }
 
+// The half of its cell a point lies in, told apart without the grid's origin: a point in the upper
+// half along an axis stays in its cell when moved back by half a cell; one in the lower half leaves it.
+TEST(NeighbourGrid, OctantKeysNameThePointsCellAndItsHalf) {
+  const auto points = random_points(2000, 1.0f, 7);
+  NeighbourGrid grid;
+  grid.build(points, 0.1f);
+  const auto queries = random_points(20000, 1.4f, 8);  // some beyond the grid's box
+  std::vector<uint32_t> keys(queries.size());
+  grid.octant_keys(queries, keys);
+  const float half = 0.5f * grid.cell_size();
+  size_t inside = 0, upper[3] = {};
+  for (size_t i = 0; i < queries.size(); ++i) {
+    const uint32_t cell = grid.key_of(queries[i]);
+    if (cell == NeighbourGrid::kOutside) {
+      ASSERT_EQ(keys[i], NeighbourGrid::kOutside) << i;
+      continue;
+    }
+    ++inside;
+    ASSERT_EQ(keys[i] >> 3, cell) << i;
+    for (int a = 0; a < 3; ++a) {
+      Vec3f back = queries[i];
+      back[a] -= half;
+      const bool in_upper_half = grid.key_of(back) == cell;
+      ASSERT_EQ(((keys[i] >> a) & 1u) != 0, in_upper_half) << i << " axis " << a;
+      upper[a] += in_upper_half;
+    }
+  }
+  // Both outcomes occur, so the test can fail either way.
+  EXPECT_GT(inside, 5000u);
+  EXPECT_LT(inside, queries.size());
+  for (size_t u : upper) {
+    EXPECT_GT(u, inside / 3);
+    EXPECT_LT(u, 2 * inside / 3);
+  }
+
+  NeighbourGrid empty;
+  empty.build({}, 1.0f);
+  empty.octant_keys(queries, keys);
+  EXPECT_EQ(std::count(keys.begin(), keys.end(), NeighbourGrid::kOutside), std::ptrdiff_t(keys.size()));
+}
+
 TEST(NeighbourGrid, EmptyGridHasNoNeighbours) {
   NeighbourGrid grid;
   grid.build({}, 1.0f);

@@ -181,6 +181,9 @@ TEST(DiffuseQuantized, TheFirstBadParticleIsNamedWhateverTheThreads) {
   d.positions[140'000].x() = 0.0f;
   const std::string type_msg = error_of([&] { d.validate("frame"); });
   EXPECT_NE(type_msg.find("particle 140001 has type 7"), std::string::npos) << type_msg;
+  d.velocities[100'003].z() = -std::numeric_limits<float>::infinity();
+  const std::string velocity_msg = error_of([&] { d.validate("frame"); });
+  EXPECT_NE(velocity_msg.find("particle 100003 "), std::string::npos) << velocity_msg;
 }
 
 TEST(DiffuseQuantized, AFrameTooWideForTheGridIsStoredExactly) {
