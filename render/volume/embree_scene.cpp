@@ -10,6 +10,7 @@
 #include "sim/core/error.h"
 #include "sim/core/parallel.h"
 #include "render/surface/triangle_mesh.h"
+#include "render/volume/quad_pairs.h"
 
 namespace spume {
 namespace {
@@ -109,6 +110,19 @@ RTCGeometry triangle_geometry(const TriangleMesh& mesh) {
   return g;
 }
 
+// The mesh's vertices with the quads' corners; *vertices is set to Embree's copy of them.
+RTCGeometry quad_geometry(const TriangleMesh& mesh, const QuadPairs& quads, const float** vertices) {
+  RTCGeometry g = rtcNewGeometry(device().device, RTC_GEOMETRY_TYPE_QUAD);
+  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.vertices.size()));
+  auto* q = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(uint32_t), quads.size()));
+  check("Embree quad buffers");
+  for (size_t i = 0; i < mesh.vertices.size(); ++i)
+    for (int c = 0; c < 3; ++c) v[3 * i + size_t(c)] = mesh.vertices[i][c];
+  std::copy(quads.corners.begin(), quads.corners.end(), q);
+  *vertices = v;
+  return g;
+}
+
 bool has_triangles(const TriangleMesh* m) { return m && m->triangle_count() > 0; }
 
 void validate_mesh(const TriangleMesh& m, const char* name) {
@@ -122,11 +136,30 @@ void validate_mesh(const TriangleMesh& m, const char* name) {
 struct SurfaceScene::Impl {
   RTCScene scene = nullptr;
   unsigned water_geom = RTC_INVALID_GEOMETRY_ID;
+  QuadPairs water;                  // Embree's primitives are these quads
   std::vector<Vec3f> water_normal;  // per triangle, outward for counter-clockwise triangles
+  const float* water_vertices = nullptr;  // Embree's vertex buffer (x, y, z a vertex)
   ~Impl() {
     if (scene) rtcReleaseScene(scene);
   }
+  // The triangle of quad q that a hit at point p lies on: the half whose plane is nearer. Both planes
+  // hold the shared diagonal, and a point of one half lies near the other's plane only near that
+  // diagonal, where either half is a true answer.
+  uint32_t water_triangle(uint32_t q, const Vec3d& p) const;
 };
+
+uint32_t SurfaceScene::Impl::water_triangle(uint32_t q, const Vec3d& p) const {
+  if (!water.paired(q)) return water.first[q];
+  const uint32_t v1 = water.corners[4 * size_t(q) + 1];
+  const Vec3d on_both = Vec3d(water_vertices[3 * size_t(v1)], water_vertices[3 * size_t(v1) + 1], water_vertices[3 * size_t(v1) + 2]);
+  auto distance = [&](uint32_t t) {
+    const Vec3d n = water_normal[t].cast<double>();
+    const double length = n.norm();
+    return length > 0.0 ? std::abs(n.dot(p - on_both)) / length : INFINITY;
+  };
+  const uint32_t a = water.first[q], b = water.second[q];
+  return distance(b) < distance(a) ? b : a;
+}
 
 SurfaceScene::SurfaceScene(const VolumeSurfaces& s) {
   const bool water = has_triangles(s.water), solids = has_triangles(s.solids);
@@ -144,7 +177,8 @@ SurfaceScene::SurfaceScene(const VolumeSurfaces& s) {
   }
   if (water) {
     validate_mesh(*s.water, "water surface");
-    RTCGeometry g = triangle_geometry(*s.water);
+    impl_->water = pair_triangles(*s.water);
+    RTCGeometry g = quad_geometry(*s.water, impl_->water, &impl_->water_vertices);
     rtcSetGeometryIntersectFilterFunction(g, record_and_reject);
     rtcCommitGeometry(g);
     impl_->water_geom = rtcAttachGeometry(impl_->scene, g);
@@ -175,7 +209,11 @@ double SurfaceScene::trace(const Vec3f& o, const Vec3f& d, double t_max, double 
   const double t_hit = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? INFINITY : double(rh.ray.tfar);
   // Hits recorded before traversal found the closest opaque hit may lie beyond it.
   for (const RawHit& h : water_hits)
-    if (double(h.t) < t_hit) crossings.push_back({double(h.t) - t_ref, impl_->water_normal[h.prim].dot(d) < 0.0f});
+    if (double(h.t) < t_hit) {
+      const Vec3d p = o.cast<double>() + double(h.t) * d.cast<double>();
+      const uint32_t triangle = impl_->water_triangle(h.prim, p);
+      crossings.push_back({double(h.t) - t_ref, impl_->water_normal[triangle].dot(d) < 0.0f});
+    }
   return t_hit;
 }
 

@@ -9,8 +9,22 @@ void water_segments(std::vector<WaterCrossing>& crossings, double origin_t, std:
   out.clear();
   if (crossings.empty()) return;
   std::sort(crossings.begin(), crossings.end(), [](const WaterCrossing& a, const WaterCrossing& b) {
-    return a.t != b.t ? a.t < b.t : a.entering < b.entering;  // tie: leave before entering again
+    return a.t != b.t ? a.t < b.t : a.entering < b.entering;
   });
+  // Crossings within each other's rounding are one event, whose sense is their net count: a crossing
+  // reported by two triangles counts once, and a sliver of water thinner than the rounding, whose two
+  // crossings may come out in either order, is no crossing at all.
+  auto merged = [&](double a, double b) { return b - a <= kMergeRelative * std::abs(b - origin_t) + kMergeAbsolute; };
+  size_t events = 0;
+  for (size_t i = 0; i < crossings.size();) {
+    size_t j = i + 1;
+    int net = crossings[i].entering ? 1 : -1;
+    for (; j < crossings.size() && merged(crossings[j - 1].t, crossings[j].t); ++j) net += crossings[j].entering ? 1 : -1;
+    if (net != 0) crossings[events++] = {crossings[i].t, net > 0};
+    i = j;
+  }
+  crossings.resize(events);
+  if (crossings.empty()) return;
   bool inside = !crossings.front().entering;
   double start = origin_t;  // used when the ray begins in water
   for (const WaterCrossing& c : crossings) {

@@ -16,10 +16,17 @@ struct WaterSegment {
   double t0, t1;  // m; the ray is in water on [t0, t1]; t1 may be +inf
 };
 
-// Crossings in any order. The state before the first crossing is "outside" unless that crossing
-// leaves the water (camera under water: its segment starts at origin_t, the ray origin in the
-// crossings' reference). Repeated crossings of the same sense (a ray through a
-// shared mesh edge reports both triangles) are ignored, so duplicates do no harm.
+// Crossings closer than this (relative to their distance from the ray origin, plus the absolute part)
+// are taken as one: Embree's float hits on a grazed surface can be 30 float roundings (2e-6 m at 4 m)
+// out, enough to swap the entry and the exit of a sliver of water (seen at the lighthouse).
+constexpr double kMergeRelative = 1e-5, kMergeAbsolute = 1e-7;  // m/m, m
+
+// Crossings in any order; reordered and merged in place. Crossings within kMerge* of each other are
+// one event with their net sense (none when they cancel), so a crossing reported by two triangles (a
+// ray through a shared edge) counts once and a sliver of water thinner than the rounding is dropped.
+// The state before the first event is "outside" unless that event leaves the water (camera under
+// water: its segment starts at origin_t, the ray origin in the crossings' reference). Further events
+// of the sense already reached are ignored.
 void water_segments(std::vector<WaterCrossing>& crossings, double origin_t, std::vector<WaterSegment>& out);
 
 // Distance travelled in water from the ray origin to t. Segments sorted and disjoint.

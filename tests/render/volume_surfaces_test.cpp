@@ -148,6 +148,42 @@ TEST(VolumeWater, SubmergedBubblesAreDimmedByTheWaterPath) {
   EXPECT_GT(clear_px, 30);
 }
 
+// A water surface folded along a ridge into a steep V (water below it): two triangles that Embree gets
+// as one quad. A ray entering through one wing would be taken for one leaving through the other wing's
+// normal, so each crossing must be judged by the wing it went through. Mirrored, the camera looks
+// through each wing in turn.
+TEST(VolumeWater, EachWingOfAFoldedSurfaceDimsWhatIsBelowIt) {
+  for (float side : {1.0f, -1.0f}) {
+    // Ridge along z through the origin; the wings rise to x = -+5, y = 10 (planes y = -+2x).
+    TriangleMesh water;
+    water.vertices = {Vec3f(0, 0, -10), Vec3f(0, 0, 10), Vec3f(-5, 10, 0), Vec3f(5, 10, 0)};
+    water.indices = {1, 0, 2,   // left wing, normal along (2, 1, 0)
+                     0, 1, 3};  // right wing, normal along (-2, 1, 0)
+    const Vec3f n_far = Vec3f(2.0f * side, 1.0f, 0.0f).normalized();  // the wing the camera looks through
+    const Vec3f bubble(-3.0f * side, 2.0f, 0.0f);  // under it, 1.79 m from its plane
+    const Camera cam = camera(Vec3f(3.0f * side, 9.0f, 3.0f), bubble);
+    VolumeSettings s = bubbles(0.8f, 2.0f);
+    const VolumeImage img = render_volume(one_type({bubble}), cam, s, {&water, nullptr});
+    int n = 0;
+    for (int y = 0; y < cam.height; ++y)
+      for (int x = 0; x < cam.width; ++x) {
+        const Ray ray = cam.ray(x + 0.5f, y + 0.5f);
+        const Chord c = chord(ray, bubble, 0.8);
+        if (!c.hit) continue;
+        ++n;
+        // Into the water through the far wing's plane, which holds the origin.
+        const Vec3d o = ray.origin.cast<double>(), d = ray.direction.cast<double>().normalized();
+        const double t_w = -o.dot(n_far.cast<double>()) / d.dot(n_far.cast<double>());
+        ASSERT_GT(t_w, 0.0);
+        ASSERT_LT(t_w, c.t0);
+        for (int ch = 0; ch < 3; ++ch)
+          EXPECT_NEAR(img.color[size_t(y * cam.width + x)][ch], dimmed(c.t0, c.t1, t_w, s.water_sigma[ch]) / (c.t1 - c.t0), 2e-5)
+              << "side " << side << " pixel " << x << "," << y;
+      }
+    EXPECT_GT(n, 100);
+  }
+}
+
 TEST(VolumeWater, CameraUnderWaterLooksOut) {
   const Camera cam = camera(Vec3f(0.0f, -1.0f, 2.0f), Vec3f(0.0f, 0.5f, 0.0f));
   const TriangleMesh water = quad(Vec3f::Zero(), Vec3f::UnitZ(), Vec3f::UnitX(), 10.0f);
