@@ -12,6 +12,7 @@
 #include "render/keys/render_keys.h"
 #include "render/volume/absorption.h"
 #include "render/volume/bin_trace.h"
+#include "render/volume/drawn_bounds.h"
 #include "sim/core/error.h"
 #include "sim/core/parallel.h"
 #include "sim/core/stopwatch.h"
@@ -113,42 +114,6 @@ size_t march(const Pass& pass, Scratch& s, std::vector<RaySample>& out) {
     out[i] = acc.finish();
   }
   return samples;
-}
-
-// Box around every drawn sphere; counts them. Fixed chunks, exact min/max: deterministic.
-Aabb drawn_bounds(DiffuseView frame, const std::array<float, kDiffuseTypeCount>& radius, size_t& count) {
-  const size_t n = frame.size(), chunks = std::clamp<size_t>(n / 65536, 1, 64);
-  std::vector<Aabb> box(chunks);
-  std::vector<size_t> drawn(chunks, 0), bad(chunks, SIZE_MAX);
-  parallel_for(chunks, 1, [&](size_t c0, size_t c1) {
-    for (size_t c = c0; c < c1; ++c)
-      for (size_t i = c * n / chunks; i < (c + 1) * n / chunks; ++i) {
-        const size_t type = size_t(frame.types[i]);
-        if (type >= size_t(kDiffuseTypeCount)) {
-          bad[c] = std::min(bad[c], i);
-          continue;
-        }
-        const float r = radius[type];
-        if (!(r > 0.0f)) continue;
-        const Vec3f& p = frame.positions[i];
-        if (!finite3(p)) {
-          bad[c] = std::min(bad[c], i);
-          continue;
-        }
-        box[c].min = box[c].min.cwiseMin(p - Vec3f::Constant(r));
-        box[c].max = box[c].max.cwiseMax(p + Vec3f::Constant(r));
-        ++drawn[c];
-      }
-  });
-  Aabb all;
-  count = 0;
-  for (size_t c = 0; c < chunks; ++c) {
-    if (bad[c] != SIZE_MAX)
-      fail("volume pass: frame ", frame.index, " particle ", bad[c], " has a non-finite position or a type outside 0..2");
-    if (drawn[c]) all.extend(box[c]);
-    count += drawn[c];
-  }
-  return all;
 }
 
 }  // namespace
