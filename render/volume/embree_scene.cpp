@@ -99,27 +99,30 @@ RTCRayHit make_ray(const Vec3f& o, const Vec3f& d, float t_near, float t_far) {
   return rh;
 }
 
-RTCGeometry triangle_geometry(const TriangleMesh& mesh) {
-  RTCGeometry g = rtcNewGeometry(device().device, RTC_GEOMETRY_TYPE_TRIANGLE);
+// A geometry of `type` over the mesh's vertices, with `primitives` of `corners` vertex indices each
+// copied from `index`; returns Embree's copy of the vertices (x, y, z a vertex), which the geometry owns.
+const float* new_mesh_geometry(RTCGeometry g, const TriangleMesh& mesh, const uint32_t* index, size_t primitives,
+                               int corners) {
   auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.vertices.size()));
-  auto* t = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), mesh.triangle_count()));
-  check("Embree triangle buffers");
+  auto* p = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, corners == 4 ? RTC_FORMAT_UINT4 : RTC_FORMAT_UINT3,
+                                                           size_t(corners) * sizeof(uint32_t), primitives));
+  check("Embree mesh buffers");
   for (size_t i = 0; i < mesh.vertices.size(); ++i)
     for (int c = 0; c < 3; ++c) v[3 * i + size_t(c)] = mesh.vertices[i][c];
-  std::copy(mesh.indices.begin(), mesh.indices.begin() + std::ptrdiff_t(3 * mesh.triangle_count()), t);
+  std::copy(index, index + size_t(corners) * primitives, p);
+  return v;
+}
+
+RTCGeometry triangle_geometry(const TriangleMesh& mesh) {
+  RTCGeometry g = rtcNewGeometry(device().device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  new_mesh_geometry(g, mesh, mesh.indices.data(), mesh.triangle_count(), 3);
   return g;
 }
 
 // The mesh's vertices with the quads' corners; *vertices is set to Embree's copy of them.
 RTCGeometry quad_geometry(const TriangleMesh& mesh, const QuadPairs& quads, const float** vertices) {
   RTCGeometry g = rtcNewGeometry(device().device, RTC_GEOMETRY_TYPE_QUAD);
-  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.vertices.size()));
-  auto* q = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(uint32_t), quads.size()));
-  check("Embree quad buffers");
-  for (size_t i = 0; i < mesh.vertices.size(); ++i)
-    for (int c = 0; c < 3; ++c) v[3 * i + size_t(c)] = mesh.vertices[i][c];
-  std::copy(quads.corners.begin(), quads.corners.end(), q);
-  *vertices = v;
+  *vertices = new_mesh_geometry(g, mesh, quads.corners.data(), quads.size(), 4);
   return g;
 }
 
