@@ -1,35 +1,54 @@
 #include "render/surface/mesh_smoothing.h"
 
 #include <algorithm>
+#include <array>
 
 #include "sim/core/parallel.h"
 
 namespace spume {
 namespace {
 
-// One umbrella step x_i += w (mean of the neighbours - x_i) from `from` into `to`; the neighbours are
-// summed in ascending order, so every value is the same for any split of the loop.
-void umbrella_step(const std::vector<Vec3f>& from, std::vector<Vec3f>& to, const VertexNeighbours& nb, float w) {
-  parallel_for(from.size(), 1024, [&](size_t b, size_t e) {
+// One umbrella step x_i += w (mean of the neighbours - x_i) on each of the K fields, from `from` into
+// `to`; the neighbours are summed in ascending order, so every value is the same for any split of the
+// loop. Fields smoothed together (positions and normals) read the neighbour lists once.
+template <size_t K>
+void umbrella_step(const std::array<std::vector<Vec3f>*, K>& from, const std::array<std::vector<Vec3f>*, K>& to,
+                   const VertexNeighbours& nb, float w) {
+  parallel_for(from[0]->size(), 1024, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
       const uint32_t first = nb.start[i], last = nb.start[i + 1];
-      if (first == last) {
-        to[i] = from[i];
-        continue;
+      std::array<Vec3f, K> sum;
+      for (size_t f = 0; f < K; ++f) sum[f] = Vec3f::Zero();
+      for (uint32_t k = first; k < last; ++k)
+        for (size_t f = 0; f < K; ++f) sum[f] += (*from[f])[nb.index[k]];
+      for (size_t f = 0; f < K; ++f) {
+        const Vec3f& x = (*from[f])[i];
+        (*to[f])[i] = first == last ? x : Vec3f(x + w * (sum[f] / float(last - first) - x));
       }
-      Vec3f sum = Vec3f::Zero();
-      for (uint32_t k = first; k < last; ++k) sum += from[nb.index[k]];
-      to[i] = from[i] + w * (sum / float(last - first) - from[i]);
     }
   });
 }
 
-void taubin(std::vector<Vec3f>& x, const VertexNeighbours& nb, int iterations) {
-  std::vector<Vec3f> tmp(x.size());
+// Taubin's lambda|mu iterations on each of the K fields.
+template <size_t K>
+void taubin(const std::array<std::vector<Vec3f>*, K>& x, const VertexNeighbours& nb, int iterations) {
+  std::array<std::vector<Vec3f>, K> tmp;
+  std::array<std::vector<Vec3f>*, K> y;
+  for (size_t f = 0; f < K; ++f) tmp[f].resize(x[f]->size()), y[f] = &tmp[f];
   for (int k = 0; k < iterations; ++k) {
-    umbrella_step(x, tmp, nb, kTaubinLambda);
-    umbrella_step(tmp, x, nb, kTaubinMu);
+    umbrella_step(x, y, nb, kTaubinLambda);
+    umbrella_step(y, x, nb, kTaubinMu);
   }
+}
+
+// Unit normals from smoothed ones; one whose neighbourhood cancelled out keeps its old direction.
+void renormalise(const std::vector<Vec3f>& smoothed, std::vector<Vec3f>& normals) {
+  parallel_for(smoothed.size(), 4096, [&](size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) {
+      const float len = smoothed[i].norm();
+      if (len > 1e-6f) normals[i] = smoothed[i] / len;
+    }
+  });
 }
 
 }  // namespace
@@ -71,19 +90,21 @@ VertexNeighbours vertex_neighbours(const TriangleMesh& mesh) {
 }
 
 void smooth_positions(TriangleMesh& mesh, const VertexNeighbours& neighbours, int iterations) {
-  taubin(mesh.vertices, neighbours, iterations);
+  taubin<1>({&mesh.vertices}, neighbours, iterations);
 }
 
 void smooth_normals(TriangleMesh& mesh, const VertexNeighbours& neighbours, int iterations) {
   if (mesh.normals.size() != mesh.vertices.size()) return;
   std::vector<Vec3f> n = mesh.normals;
-  taubin(n, neighbours, iterations);
-  parallel_for(n.size(), 4096, [&](size_t b, size_t e) {
-    for (size_t i = b; i < e; ++i) {
-      const float len = n[i].norm();
-      if (len > 1e-6f) mesh.normals[i] = n[i] / len;
-    }
-  });
+  taubin<1>({&n}, neighbours, iterations);
+  renormalise(n, mesh.normals);
+}
+
+void smooth_surface(TriangleMesh& mesh, const VertexNeighbours& neighbours, int iterations) {
+  if (mesh.normals.size() != mesh.vertices.size()) return smooth_positions(mesh, neighbours, iterations);
+  std::vector<Vec3f> n = mesh.normals;
+  taubin<2>({&mesh.vertices, &n}, neighbours, iterations);
+  renormalise(n, mesh.normals);
 }
 
 }  // namespace spume

@@ -27,5 +27,8 @@ void smooth_positions(TriangleMesh& mesh, const VertexNeighbours& neighbours, in
 // The same on the normals (a mesh without normals is left alone); each result is renormalised, and a
 // normal whose neighbourhood cancels out keeps its old direction.
 void smooth_normals(TriangleMesh& mesh, const VertexNeighbours& neighbours, int iterations);
+// Both at once, the same values as smooth_positions then smooth_normals: one pass over the neighbour
+// lists per step instead of two.
+void smooth_surface(TriangleMesh& mesh, const VertexNeighbours& neighbours, int iterations);
 
 }  // namespace spume

@@ -58,8 +58,7 @@ TriangleMesh reconstruct_surface(std::span<const Vec3f> positions, const Surface
   if (params.smoothing > 0) {
     t.restart();
     const VertexNeighbours neighbours = vertex_neighbours(mesh);
-    smooth_positions(mesh, neighbours, params.smoothing);
-    smooth_normals(mesh, neighbours, params.smoothing);
+    smooth_surface(mesh, neighbours, params.smoothing);
     s.seconds_smooth = t.seconds();
   }
   if (stats) *stats = s;

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "sim/grid/neighbour_grid.h"
-#include "sim/grid/radix_sort.h"
+#include "sim/core/radix_sort.h"
 
 namespace spume {
 

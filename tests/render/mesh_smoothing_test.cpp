@@ -96,6 +96,26 @@ TEST(MeshSmoothing, NormalsOnASphere) {
   EXPECT_LT(after, before / 2.0) << "mean angle to radial: " << before << " -> " << after << " deg";
 }
 
+// Positions and normals smoothed together are the values of smoothing one and then the other, bit
+// for bit (the reconstruction smooths them together), and both change.
+TEST(MeshSmoothing, SmoothingBothAtOnceEqualsOneAfterTheOther) {
+  TriangleMesh noisy = welded_sphere(1.0f, 24, 48);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-0.05f, 0.05f);
+  for (Vec3f& v : noisy.vertices) v *= 1.0f + u(rng);
+  for (Vec3f& n : noisy.normals) n = (n + Vec3f(u(rng), u(rng), u(rng))).normalized();
+  const VertexNeighbours nb = vertex_neighbours(noisy);
+  TriangleMesh apart = noisy, together = noisy;
+  smooth_positions(apart, nb, 8);
+  smooth_normals(apart, nb, 8);
+  smooth_surface(together, nb, 8);
+  ASSERT_EQ(together.vertices.size(), apart.vertices.size());
+  EXPECT_EQ(std::memcmp(together.vertices.data(), apart.vertices.data(), apart.vertices.size() * sizeof(Vec3f)), 0);
+  EXPECT_EQ(std::memcmp(together.normals.data(), apart.normals.data(), apart.normals.size() * sizeof(Vec3f)), 0);
+  EXPECT_NE(together.vertices, noisy.vertices);
+  EXPECT_NE(together.normals, noisy.normals);
+}
+
 // Radial noise of 2% on a unit sphere: Taubin smoothing at least halves it (white noise, as above) and
 // keeps the mean radius within 0.2%.
 TEST(MeshSmoothing, PositionsOnASphereLoseNoiseNotSize) {

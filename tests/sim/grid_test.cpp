@@ -5,7 +5,7 @@
 
 #include "sim/core/parallel.h"
 #include "sim/grid/neighbour_grid.h"
-#include "sim/grid/radix_sort.h"
+#include "sim/core/radix_sort.h"
 
 namespace spume {
 namespace {

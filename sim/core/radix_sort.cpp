@@ -1,4 +1,4 @@
-#include "sim/grid/radix_sort.h"
+#include "sim/core/radix_sort.h"
 
 #include <algorithm>
 
