@@ -139,9 +139,10 @@ void validate_mesh(const TriangleMesh& m, const char* name) {
 struct SurfaceScene::Impl {
   RTCScene scene = nullptr;
   unsigned water_geom = RTC_INVALID_GEOMETRY_ID;
-  QuadPairs water;                  // Embree's primitives are these quads
+  QuadPairs water;                  // Embree's primitives are these quads (their corners: Embree's copy)
   std::vector<Vec3f> water_normal;  // per triangle, outward for counter-clockwise triangles
   const float* water_vertices = nullptr;  // Embree's vertex buffer (x, y, z a vertex)
+  const uint32_t* water_corners = nullptr;  // Embree's index buffer (4 corners a quad)
   ~Impl() {
     if (scene) rtcReleaseScene(scene);
   }
@@ -153,7 +154,7 @@ struct SurfaceScene::Impl {
 
 uint32_t SurfaceScene::Impl::water_triangle(uint32_t q, const Vec3d& p) const {
   if (!water.paired(q)) return water.first[q];
-  const uint32_t v1 = water.corners[4 * size_t(q) + 1];
+  const uint32_t v1 = water_corners[4 * size_t(q) + 1];
   const Vec3d on_both = Vec3d(water_vertices[3 * size_t(v1)], water_vertices[3 * size_t(v1) + 1], water_vertices[3 * size_t(v1) + 2]);
   auto distance = [&](uint32_t t) {
     const Vec3d n = water_normal[t].cast<double>();
@@ -182,6 +183,8 @@ SurfaceScene::SurfaceScene(const VolumeSurfaces& s) {
     validate_mesh(*s.water, "water surface");
     impl_->water = pair_triangles(*s.water);
     RTCGeometry g = quad_geometry(*s.water, impl_->water, &impl_->water_vertices);
+    impl_->water_corners = static_cast<const uint32_t*>(rtcGetGeometryBufferData(g, RTC_BUFFER_TYPE_INDEX, 0));
+    std::vector<uint32_t>().swap(impl_->water.corners);  // 16 bytes a quad that Embree holds too
     rtcSetGeometryIntersectFilterFunction(g, record_and_reject);
     rtcCommitGeometry(g);
     impl_->water_geom = rtcAttachGeometry(impl_->scene, g);

@@ -21,7 +21,7 @@ inline int32_t rounded_within(double x, double lo, double hi) {
 // IEEE operations at any width; only the packing into records is scalar. Built for AVX2 and baseline
 // x86-64, picked at load time. At 15M particles this step took 6.5% of a frame's CPU time scalar.
 __attribute__((target_clones("avx2", "default"))) void pack_diffuse(const DiffuseFrame& frame,
-                                                                     const PackingSteps& k, size_t begin,
+                                                                     const PackingSteps& q, size_t begin,
                                                                      size_t end, PackedDiffuse* records,
                                                                      uint64_t* wide_keys) {
   constexpr size_t kBlock = 256;
@@ -33,15 +33,15 @@ __attribute__((target_clones("avx2", "default"))) void pack_diffuse(const Diffus
     const float* motion = frame.velocities[b].data();
     const float* lifetime = &frame.lifetimes[b];
     for (int a = 0; a < 3; ++a) {
-      const double origin = k.origin[a], per_step = k.per_step, max_steps = k.max_steps[a];
-      const double per_velocity_step = k.per_velocity_step;
+      const double origin = q.origin[a], per_step = q.per_step, max_steps = q.max_steps[a];
+      const double per_velocity_step = q.per_velocity_step;
       for (size_t j = 0; j < m; ++j) {
         steps[a][j] = rounded_within((double(position[3 * j + a]) - origin) * per_step, 0.0, max_steps);
         velocity[a][j] = rounded_within(double(motion[3 * j + a]) * per_velocity_step, -32767.0, 32767.0);
       }
     }
     for (size_t j = 0; j < m; ++j)
-      life[j] = rounded_within((double(lifetime[j]) - k.life_origin) * k.per_life_step, 0.0, 65535.0);
+      life[j] = rounded_within((double(lifetime[j]) - q.life_origin) * q.per_life_step, 0.0, 65535.0);
     for (size_t j = 0; j < m; ++j) {
       PackedDiffuse& p = records[b + j];
       uint64_t cell[3];
@@ -53,7 +53,7 @@ __attribute__((target_clones("avx2", "default"))) void pack_diffuse(const Diffus
       p.life = uint16_t(life[j]);
       p.id = frame.ids[b + j];
       p.type = uint8_t(frame.types[b + j]);
-      const uint64_t key = cell[0] + k.cells[0] * (cell[1] + uint64_t(k.cells[1]) * cell[2]);
+      const uint64_t key = cell[0] + q.cells[0] * (cell[1] + uint64_t(q.cells[1]) * cell[2]);
       p.key = uint32_t(key);
       if (wide_keys) wide_keys[b + j] = key;
     }
