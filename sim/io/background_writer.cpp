@@ -15,7 +15,7 @@ BackgroundWriter::~BackgroundWriter() {
 double BackgroundWriter::write(std::filesystem::path path, CacheBytes bytes) {
   const double waited = wait();
   pending_ = std::async(std::launch::async, [path = std::move(path), bytes = std::move(bytes)] {
-    write_file_atomically(path, [&](std::ostream& file) { file.write(bytes.data(), std::streamsize(bytes.size())); });
+    write_bytes_atomically(path, bytes.data(), bytes.size());
   });
   return waited;
 }

@@ -1,7 +1,8 @@
 #pragma once
-// Writes files on a thread of its own, one at a time, so that the simulation goes on while the kernel
-// copies a frame's cache into the page cache (a 14M-particle frame: 170 MB, about 0.4 s of write() on
-// this VM, against 0.55 s to encode it). Each file is written atomically (core/atomic_file.h).
+// Writes files on a thread of its own, one at a time, so that the simulation goes on while a frame's
+// cache goes to the disk (a 14M-particle frame: 170 MB; through the page cache that was about 0.4 s of
+// write() on this VM, against 0.55 s to encode it). Each file is written atomically, its whole blocks
+// past the page cache (core/atomic_file.h, write_bytes_atomically).
 #include <filesystem>
 #include <future>
 

@@ -15,6 +15,7 @@
 #include "sim/io/diffuse_quantized.h"
 
 #include "sim/core/atomic_file.h"
+#include "sim/core/direct_read.h"
 #include "sim/core/error.h"
 #include "sim/io/io_bytes.h"
 
@@ -224,15 +225,13 @@ void read_values(ByteReader& r, Array& v, size_t n, const char* what) {
   read_column(r, v.data(), n * sizeof(v[0]), what);
 }
 
-// The whole file, into memory that is not zero-filled first.
+// The whole file, into memory that is not zero-filled first (2 MiB aligned: read directly, core/direct_read.h).
 HugeBuffer<char> read_whole_file(const std::filesystem::path& path) {
   std::error_code ec;
   const uint64_t size = std::filesystem::file_size(path, ec);
   if (ec) fail(path.string(), ": cannot determine file size: ", ec.message());
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path.string(), ": cannot open for reading");
   HugeBuffer<char> bytes{size_t(size)};
-  if (size > 0 && !in.read(bytes.data(), std::streamsize(size))) fail(path.string(), ": read failed (file changed or unreadable)");
+  read_file_bytes(path, bytes.data(), bytes.size());
   return bytes;
 }
 
