@@ -38,13 +38,17 @@ struct AlignedBytes {
   size_t size;
 };
 
+// Whether the file system in `dir` takes a direct write of one aligned block (some refuse the open,
+// some only the write).
 bool direct_io_here(const fs::path& dir) {
   const fs::path probe = dir / "probe";
   const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_DIRECT, 0666);
   if (fd < 0) return false;
+  const AlignedBytes block(4096);
+  const bool wrote = ::write(fd, block.data, 4096) == 4096;
   ::close(fd);
   fs::remove(probe);
-  return true;
+  return wrote;
 }
 
 // Which of the file's first `pages` 4 KiB pages the page cache holds (a mapping that touches none).
