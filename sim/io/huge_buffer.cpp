@@ -1,7 +1,12 @@
 #include "sim/io/huge_buffer.h"
 
+#include <sys/mman.h>
+
 #include <algorithm>
+#include <cstdint>
 #include <mutex>
+#include <new>
+#include <utility>
 #include <vector>
 
 namespace spume {
@@ -29,10 +34,39 @@ Pool& pool() {
   return *p;
 }
 
+// A fresh block of `bytes` (a multiple of 2 MiB) at a 2 MiB boundary, advised 2 MiB pages; null when
+// the address space is short.
+void* map_block(size_t bytes) {
+  void* region = mmap(nullptr, bytes + kHuge, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (region == MAP_FAILED) return nullptr;
+  char* start = static_cast<char*>(region);
+  char* block = reinterpret_cast<char*>((reinterpret_cast<uintptr_t>(start) + kHuge - 1) & ~(kHuge - 1));
+  if (block > start) munmap(start, size_t(block - start));
+  if (block + bytes < start + bytes + kHuge) munmap(block + bytes, size_t(start + bytes + kHuge - (block + bytes)));
+  madvise(block, bytes, MADV_HUGEPAGE);  // advice only: without huge pages it is an ordinary buffer
+  return block;
+}
+
+// `block` (of old_bytes) grown to new_bytes at a new 2 MiB boundary: its pages move over as they
+// are, 2 MiB ones included, and only the growth is fresh memory for the kernel to clear. Null when
+// it cannot be moved; `block` is then as it was.
+void* grow_block(void* block, size_t old_bytes, size_t new_bytes) {
+  char* target = static_cast<char*>(map_block(new_bytes));  // a 2 MiB-aligned place, never touched
+  if (!target) return nullptr;
+  void* moved = mremap(block, old_bytes, new_bytes, MREMAP_MAYMOVE | MREMAP_FIXED, target);
+  if (moved == MAP_FAILED) {
+    munmap(target, new_bytes);
+    return nullptr;
+  }
+  madvise(moved, new_bytes, MADV_HUGEPAGE);
+  return moved;
+}
+
 }  // namespace
 
 void* scratch_take(size_t bytes, size_t& block_bytes) {
   const size_t want = block_size(bytes);
+  std::pair<void*, size_t> grow{nullptr, 0};
   {
     Pool& p = pool();
     std::lock_guard lock(p.mutex);
@@ -47,28 +81,43 @@ void* scratch_take(size_t bytes, size_t& block_bytes) {
       p.kept.erase(best);
       return block;
     }
+    // None fits: a frame's arrays grow with its particle count, so the largest kept block of at
+    // least half the size (most likely last frame's array of the same kind) is grown instead.
+    for (auto it = p.kept.begin(); it != p.kept.end(); ++it)
+      if (it->second < want && it->second * 2 >= want && (best == p.kept.end() || it->second > best->second)) best = it;
+    if (best != p.kept.end()) {
+      grow = *best;
+      p.kept_bytes -= best->second;
+      p.kept.erase(best);
+    }
   }
-  void* block = std::aligned_alloc(kHuge, want);
+  if (grow.first) {
+    if (void* block = grow_block(grow.first, grow.second, want)) {
+      block_bytes = want;
+      return block;
+    }
+    munmap(grow.first, grow.second);
+  }
+  void* block = map_block(want);
   if (!block) throw std::bad_alloc();
-  madvise(block, want, MADV_HUGEPAGE);  // advice only: without huge pages it is an ordinary buffer
   block_bytes = want;
   return block;
 }
 
 void scratch_give_back(void* block, size_t block_bytes) {
-  std::vector<void*> release;
+  std::vector<std::pair<void*, size_t>> release;
   {
     Pool& p = pool();
     std::lock_guard lock(p.mutex);
     p.kept.emplace_back(block, block_bytes);
     p.kept_bytes += block_bytes;
     while (p.kept_bytes > kScratchPoolBytes) {
-      release.push_back(p.kept.front().first);
+      release.push_back(p.kept.front());
       p.kept_bytes -= p.kept.front().second;
       p.kept.erase(p.kept.begin());
     }
   }
-  for (void* b : release) std::free(b);
+  for (const auto& [b, bytes] : release) munmap(b, bytes);
 }
 
 size_t scratch_pool_kept_bytes() {

@@ -22,7 +22,9 @@ namespace spume {
 // The pool behind HugeBuffer: freed blocks are kept (up to kScratchPoolBytes of blocks in all, the oldest
 // released first beyond that) and a request takes the smallest kept block that fits, when that block
 // is at most twice the request. Block sizes are rounded up to 2 MiB times 8..15 x a power of two, so
-// that a frame slightly larger than the last still fits the last frame's blocks. Thread-safe.
+// that a frame slightly larger than the last still fits the last frame's blocks; when none fits, the
+// largest kept block of at least half the request is grown in place of a fresh one (its pages move
+// over, and only the growth is fresh). Thread-safe.
 constexpr size_t kScratchPoolBytes = size_t(2) << 30;  // address space: only the touched pages are resident
 void* scratch_take(size_t bytes, size_t& block_bytes);
 void scratch_give_back(void* block, size_t block_bytes);
