@@ -7,6 +7,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdint>
 #include <cstdlib>
@@ -23,6 +24,7 @@ std::string host_name() {
   return host;
 }
 
+// The temporary file's name beside `path` (unique per host and process), its folder made first.
 std::filesystem::path temporary_beside(const std::filesystem::path& path) {
   namespace fs = std::filesystem;
   std::error_code ec;
