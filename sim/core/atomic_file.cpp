@@ -3,16 +3,13 @@
 #include <cstdio>
 #include <fstream>
 #include <system_error>
-#include <fcntl.h>
 #include <signal.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <cerrno>
-#include <cstdint>
 #include <cstdlib>
-#include <cstring>
 
+#include "sim/core/direct_io.h"
 #include "sim/core/error.h"
 
 namespace spume {
@@ -38,53 +35,17 @@ std::filesystem::path temporary_beside(const std::filesystem::path& path) {
   return tmp;
 }
 
-constexpr size_t kDirectAlignment = 4096;  // covers 512- and 4096-byte logical blocks
-
-// Writes [data, data + size) at the file's current offset; false (errno set) on failure.
-bool write_all(int fd, const char* data, size_t size) {
-  while (size > 0) {
-    const ssize_t wrote = ::write(fd, data, std::min<size_t>(size, size_t(1) << 30));
-    if (wrote < 0 && errno == EINTR) continue;
-    if (wrote <= 0) return false;
-    data += wrote, size -= size_t(wrote);
-  }
-  return true;
-}
-
 }  // namespace
 
 void write_bytes_atomically(const std::filesystem::path& path, const char* data, size_t size) {
   namespace fs = std::filesystem;
-  const fs::path tmp = temporary_beside(path);
-  const bool aligned = reinterpret_cast<uintptr_t>(data) % kDirectAlignment == 0;
-  const size_t direct = aligned ? size / kDirectAlignment * kDirectAlignment : 0;
-  const int flags = O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC;
-  int fd = direct > 0 ? ::open(tmp.c_str(), flags | O_DIRECT, 0666) : -1;
-  const bool is_direct = fd >= 0;
-  if (fd < 0) fd = ::open(tmp.c_str(), flags, 0666);
-  if (fd < 0) fail(path.string(), ": cannot open ", tmp.string(), " for writing: ", std::strerror(errno));
   std::error_code ec;
-  auto give_up = [&](const char* what) {
-    const int error = errno;
-    ::close(fd);
+  const fs::path tmp = temporary_beside(path);
+  try {
+    write_file_bytes(tmp, data, size, path.string());
+  } catch (...) {
     fs::remove(tmp, ec);
-    fail(path.string(), ": ", what, ": ", std::strerror(error));
-  };
-  size_t done = 0;
-  if (is_direct) {
-    if (write_all(fd, data, direct)) {
-      done = direct;
-    } else if (errno != EINVAL) {
-      give_up("write failed (disk full?)");
-    }
-    // The tail (and, where direct writes were refused, everything) through the page cache.
-    if (::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_DIRECT) != 0) give_up("cannot leave direct I/O");
-    if (done == 0 && ::lseek(fd, 0, SEEK_SET) != 0) give_up("cannot rewind");
-  }
-  if (!write_all(fd, data + done, size - done)) give_up("write failed (disk full?)");
-  if (::close(fd) != 0) {
-    fs::remove(tmp, ec);
-    fail(path.string(), ": write failed (disk full?): ", std::strerror(errno));
+    throw;
   }
   fs::rename(tmp, path, ec);
   if (ec) {

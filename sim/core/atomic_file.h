@@ -12,11 +12,8 @@ namespace spume {
 // Throws Error naming the path if anything fails; the temporary file is removed on failure.
 void write_file_atomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write);
 
-// The same for `size` bytes in memory. When `data` is 4 KiB aligned, its whole 4 KiB blocks go to the
-// disk directly (O_DIRECT), not through the page cache: a 15M-particle diffuse cache is 170 MB a
-// frame, and copying it into the page cache, with the cache's upkeep, took about a tenth of the
-// diffuse stage's processor time. The rest, and any file system that refuses direct writes, goes
-// through the page cache as usual.
+// The same for `size` bytes in memory, written by write_file_bytes (core/direct_io.h): their whole
+// 4 KiB blocks go to the disk directly when `data` is 4 KiB aligned.
 void write_bytes_atomically(const std::filesystem::path& path, const char* data, size_t size);
 
 // Removes the temporary files in `dir` (not below it) that writers on this host left when they died

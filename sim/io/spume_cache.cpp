@@ -15,7 +15,7 @@
 #include "sim/io/diffuse_quantized.h"
 
 #include "sim/core/atomic_file.h"
-#include "sim/core/direct_read.h"
+#include "sim/core/direct_io.h"
 #include "sim/core/error.h"
 #include "sim/io/io_bytes.h"
 
@@ -225,7 +225,7 @@ void read_values(ByteReader& r, Array& v, size_t n, const char* what) {
   read_column(r, v.data(), n * sizeof(v[0]), what);
 }
 
-// The whole file, into memory that is not zero-filled first (2 MiB aligned: read directly, core/direct_read.h).
+// The whole file, into memory that is not zero-filled first (2 MiB aligned: read directly, core/direct_io.h).
 HugeBuffer<char> read_whole_file(const std::filesystem::path& path) {
   std::error_code ec;
   const uint64_t size = std::filesystem::file_size(path, ec);

@@ -1,4 +1,4 @@
-// Large files past the page cache (core/atomic_file.h write_bytes_atomically, core/direct_read.h):
+// Large files past the page cache (core/direct_io.h, and write_bytes_atomically in core/atomic_file.h):
 // the bytes arrive whole whatever their alignment and size, their whole 4 KiB blocks bypass the
 // page cache both ways (checked against the kernel's account, mincore), and failures name the file.
 #include <gtest/gtest.h>
@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "sim/core/atomic_file.h"
-#include "sim/core/direct_read.h"
+#include "sim/core/direct_io.h"
 #include "tests/support/error_of.h"
 #include "tests/support/files.h"
 #include "tests/support/temp_dir.h"
