@@ -14,8 +14,11 @@ BackgroundWriter::~BackgroundWriter() {
 
 double BackgroundWriter::write(std::filesystem::path path, CacheBytes bytes) {
   const double waited = wait();
-  pending_ = std::async(std::launch::async, [path = std::move(path), bytes = std::move(bytes)] {
-    write_bytes_atomically(path, bytes.data(), bytes.size());
+  // The bytes move into the task's own scope, so that their memory goes back to the pool when the file
+  // is written, not when the next file replaces this future (the next frame's encoding wants it).
+  pending_ = std::async(std::launch::async, [path = std::move(path), bytes = std::move(bytes)]() mutable {
+    const CacheBytes mine = std::move(bytes);
+    write_bytes_atomically(path, mine.data(), mine.size());
   });
   return waited;
 }

@@ -26,7 +26,7 @@ size_t chunk_count(size_t bytes) { return (bytes + kColumnChunkBytes - 1) / kCol
 
 void CacheBytes::reserve(size_t bytes) {
   if (bytes <= capacity_) return;
-  HugeBuffer<char> bigger(bytes);
+  HugeBuffer<char> bigger(bytes, BlockWrites::InPart);  // append_column writes its worst case in part
   if (size_ > 0) std::memcpy(bigger.data(), buffer_.data(), size_);
   buffer_ = std::move(bigger);
   capacity_ = bytes;

@@ -23,9 +23,15 @@ size_t block_size(size_t bytes) {
   return units * kHuge;
 }
 
+struct Kept {
+  void* block;
+  size_t bytes;
+  BlockWrites writes;
+};
+
 struct Pool {
   std::mutex mutex;
-  std::vector<std::pair<void*, size_t>> kept;  // oldest first
+  std::vector<Kept> kept;  // oldest first
   size_t kept_bytes = 0;
 };
 
@@ -64,39 +70,48 @@ void* grow_block(void* block, size_t old_bytes, size_t new_bytes) {
 
 }  // namespace
 
-void* scratch_take(size_t bytes, size_t& block_bytes) {
+void* scratch_take(size_t bytes, size_t& block_bytes, BlockWrites writes) {
   const size_t want = block_size(bytes);
-  std::pair<void*, size_t> grow{nullptr, 0};
+  Kept grow{nullptr, 0, writes};
   {
     Pool& p = pool();
     std::lock_guard lock(p.mutex);
-    auto best = p.kept.end();
-    for (auto it = p.kept.begin(); it != p.kept.end(); ++it)
-      if (it->second >= want && it->second <= 2 * want && (best == p.kept.end() || it->second < best->second))
-        best = it;
-    if (best != p.kept.end()) {
-      void* block = best->first;
-      block_bytes = best->second;
-      p.kept_bytes -= block_bytes;
-      p.kept.erase(best);
-      return block;
+    // The best kept block by `better` among those `eligible`, of the request's kind if there is one.
+    auto pick = [&](auto eligible, auto better) {
+      auto best = p.kept.end();
+      for (bool own_kind : {true, false}) {
+        for (auto it = p.kept.begin(); it != p.kept.end(); ++it)
+          if ((it->writes == writes) == own_kind && eligible(*it) && (best == p.kept.end() || better(*it, *best)))
+            best = it;
+        if (best != p.kept.end()) break;
+      }
+      return best;
+    };
+    auto taken = [&](auto it) {
+      const Kept k = *it;
+      p.kept_bytes -= k.bytes;
+      p.kept.erase(it);
+      return k;
+    };
+    auto fits = pick([&](const Kept& k) { return k.bytes >= want && k.bytes <= 2 * want; },
+                     [](const Kept& a, const Kept& b) { return a.bytes < b.bytes; });
+    if (fits != p.kept.end()) {
+      const Kept k = taken(fits);
+      block_bytes = k.bytes;
+      return k.block;
     }
     // None fits: a frame's arrays grow with its particle count, so the largest kept block of at
     // least half the size (most likely last frame's array of the same kind) is grown instead.
-    for (auto it = p.kept.begin(); it != p.kept.end(); ++it)
-      if (it->second < want && it->second * 2 >= want && (best == p.kept.end() || it->second > best->second)) best = it;
-    if (best != p.kept.end()) {
-      grow = *best;
-      p.kept_bytes -= best->second;
-      p.kept.erase(best);
-    }
+    auto half = pick([&](const Kept& k) { return k.bytes < want && k.bytes * 2 >= want; },
+                     [](const Kept& a, const Kept& b) { return a.bytes > b.bytes; });
+    if (half != p.kept.end()) grow = taken(half);
   }
-  if (grow.first) {
-    if (void* block = grow_block(grow.first, grow.second, want)) {
+  if (grow.block) {
+    if (void* block = grow_block(grow.block, grow.bytes, want)) {
       block_bytes = want;
       return block;
     }
-    munmap(grow.first, grow.second);
+    munmap(grow.block, grow.bytes);
   }
   void* block = map_block(want);
   if (!block) throw std::bad_alloc();
@@ -104,20 +119,31 @@ void* scratch_take(size_t bytes, size_t& block_bytes) {
   return block;
 }
 
-void scratch_give_back(void* block, size_t block_bytes) {
-  std::vector<std::pair<void*, size_t>> release;
+void scratch_give_back(void* block, size_t block_bytes, BlockWrites writes) {
+  std::vector<Kept> release;
   {
     Pool& p = pool();
     std::lock_guard lock(p.mutex);
-    p.kept.emplace_back(block, block_bytes);
+    p.kept.push_back({block, block_bytes, writes});
     p.kept_bytes += block_bytes;
     while (p.kept_bytes > kScratchPoolBytes) {
       release.push_back(p.kept.front());
-      p.kept_bytes -= p.kept.front().second;
+      p.kept_bytes -= p.kept.front().bytes;
       p.kept.erase(p.kept.begin());
     }
   }
-  for (const auto& [b, bytes] : release) munmap(b, bytes);
+  for (const Kept& k : release) munmap(k.block, k.bytes);
+}
+
+void scratch_pool_release() {
+  std::vector<Kept> release;
+  {
+    Pool& p = pool();
+    std::lock_guard lock(p.mutex);
+    release.swap(p.kept);
+    p.kept_bytes = 0;
+  }
+  for (const Kept& k : release) munmap(k.block, k.bytes);
 }
 
 size_t scratch_pool_kept_bytes() {

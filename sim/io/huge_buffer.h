@@ -19,16 +19,25 @@
 
 namespace spume {
 
+// How a block's owner writes it. Only written pages are mapped: a block written in part (a cache being
+// assembled, each compressed chunk at its worst-case offset) keeps unmapped holes, which fault in again
+// when the block serves an owner that writes it whole (a sort's scratch). So each kind goes back to
+// its own kind of owner first.
+enum class BlockWrites { Whole, InPart };
+
 // The pool behind HugeBuffer: freed blocks are kept (up to kScratchPoolBytes of blocks in all, the oldest
 // released first beyond that) and a request takes the smallest kept block that fits, when that block
-// is at most twice the request. Block sizes are rounded up to 2 MiB times 8..15 x a power of two, so
-// that a frame slightly larger than the last still fits the last frame's blocks; when none fits, the
-// largest kept block of at least half the request is grown in place of a fresh one (its pages move
-// over, and only the growth is fresh). Thread-safe.
+// is at most twice the request, of its own kind if one fits. Block sizes are rounded up to 2 MiB times
+// 8..15 x a power of two, so that a frame slightly larger than the last still fits the last frame's
+// blocks; when none fits, the largest kept block of at least half the request (of its own kind first)
+// is grown in place of a fresh one (its pages move over, and only the growth is fresh). Thread-safe.
 constexpr size_t kScratchPoolBytes = size_t(2) << 30;  // address space: only the touched pages are resident
-void* scratch_take(size_t bytes, size_t& block_bytes);
-void scratch_give_back(void* block, size_t block_bytes);
+void* scratch_take(size_t bytes, size_t& block_bytes, BlockWrites writes = BlockWrites::Whole);
+void scratch_give_back(void* block, size_t block_bytes, BlockWrites writes = BlockWrites::Whole);
 size_t scratch_pool_kept_bytes();  // memory held for reuse now
+// Hands every kept block back to the system: for a stage done with its large arrays, so that the next
+// stage in the same process (spume run's render after its simulation) does not carry them.
+void scratch_pool_release();
 
 template <typename T>
 class HugeBuffer {
@@ -36,21 +45,21 @@ class HugeBuffer {
 
  public:
   HugeBuffer() = default;
-  explicit HugeBuffer(size_t n) { resize(n); }
+  explicit HugeBuffer(size_t n, BlockWrites writes = BlockWrites::Whole) : writes_(writes) { resize(n); }
   HugeBuffer(HugeBuffer&& o) noexcept { swap(o); }
   HugeBuffer& operator=(HugeBuffer&& o) noexcept {
     HugeBuffer(std::move(o)).swap(*this);
     return *this;
   }
   ~HugeBuffer() {
-    if (data_) scratch_give_back(data_, block_bytes_);
+    if (data_) scratch_give_back(data_, block_bytes_, writes_);
   }
   // Contents are unspecified after a resize that grows the buffer.
   void resize(size_t n) {
     if (n > capacity_) {
       size_t block = 0;
-      T* p = static_cast<T*>(scratch_take(n * sizeof(T), block));
-      if (data_) scratch_give_back(data_, block_bytes_);
+      T* p = static_cast<T*>(scratch_take(n * sizeof(T), block, writes_));
+      if (data_) scratch_give_back(data_, block_bytes_, writes_);
       data_ = p, block_bytes_ = block, capacity_ = block / sizeof(T);
     }
     size_ = n;
@@ -68,10 +77,11 @@ class HugeBuffer {
  private:
   void swap(HugeBuffer& o) noexcept {
     std::swap(data_, o.data_), std::swap(size_, o.size_), std::swap(capacity_, o.capacity_);
-    std::swap(block_bytes_, o.block_bytes_);
+    std::swap(block_bytes_, o.block_bytes_), std::swap(writes_, o.writes_);
   }
   T* data_ = nullptr;
   size_t size_ = 0, capacity_ = 0, block_bytes_ = 0;
+  BlockWrites writes_ = BlockWrites::Whole;
 };
 
 }  // namespace spume

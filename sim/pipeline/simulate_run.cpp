@@ -20,6 +20,7 @@
 #include "sim/io/background_writer.h"
 #include "sim/io/bgeo.h"
 #include "sim/io/cache_layout.h"
+#include "sim/io/huge_buffer.h"
 #include "sim/io/spume_cache.h"
 #include "sim/scene/diffuse_params_reader.h"
 
@@ -205,6 +206,11 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
   summary.why = options.force ? "--force" : match.why;
   remove_stage_record(cache_dir);
   const HugePagesForLargeBlocks huge_pages;  // the frame's arrays grow with it: fresh memory every frame
+  // The caches' buffers stay pooled from frame to frame, and go back to the system when the stage ends
+  // (declared before the writer, so after its last file).
+  struct ReleasePoolOnExit {
+    ~ReleasePoolOnExit() { scratch_pool_release(); }
+  } const release_pool;
 
   Progress progress("simulate " + scene.name, frames.size() - resume, options.quiet);
   if (resume > 0)

@@ -1,12 +1,15 @@
 // BackgroundWriter (io/background_writer.h): files written on its thread arrive whole and in place,
 // one at a time; a failed write is reported by the next call, naming the file; nothing is left behind
-// half-written; the destructor waits for the file in flight. And the pipeline's encode-then-write
+// half-written; the destructor waits for the file in flight; the bytes' memory goes back to the pool
+// once their file is written, not when the next file is started. And the pipeline's encode-then-write
 // gives the bytes write_diffuse_cache writes.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <random>
 #include <string>
+#include <thread>
 
 #include "sim/io/background_writer.h"
 #include "sim/io/spume_cache.h"
@@ -58,6 +61,24 @@ TEST(BackgroundWriter, AFailedWriteIsReportedByTheNextCallNamingTheFile) {
   EXPECT_EQ(testing::read_file(dir / "next.spd"), "next");
   writer.write(blocker / "again.spd", bytes_of("data"));
   EXPECT_NE(testing::error_of([&] { writer.wait(); }).find("again.spd"), std::string::npos);
+}
+
+TEST(BackgroundWriter, TheBytesMemoryGoesBackToThePoolOnceTheirFileIsWritten) {
+  // The next frame's encoding, which runs before the next write(), is what wants that memory.
+  testing::TempDir dir;
+  CacheBytes bytes;
+  bytes.resize(64 << 20);
+  std::fill_n(bytes.data(), bytes.size(), 'z');
+  const size_t kept_before = scratch_pool_kept_bytes();
+  BackgroundWriter writer;
+  writer.write(dir / "frame.spd", std::move(bytes));
+  // Not wait(): that ends the task and would free the bytes either way.
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (scratch_pool_kept_bytes() < kept_before + (64 << 20) && std::chrono::steady_clock::now() < give_up)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  EXPECT_EQ(scratch_pool_kept_bytes(), kept_before + (64 << 20));
+  writer.wait();
+  EXPECT_EQ(std::filesystem::file_size(dir / "frame.spd"), size_t(64) << 20);
 }
 
 TEST(BackgroundWriter, EncodeThenWriteGivesWhatWriteDiffuseCacheWrites) {

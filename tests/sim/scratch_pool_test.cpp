@@ -1,6 +1,8 @@
 // The pool behind HugeBuffer (io/huge_buffer.h): a freed block is taken again by a request it fits,
-// and a request no kept block fits grows the largest kept block of at least half its size, keeping
-// its pages (so only the growth is fresh memory), instead of taking a fresh one.
+// a block written in part goes back to an owner that writes in part before one that writes whole
+// (and the other way round), and a request no kept block fits grows the largest kept block of at
+// least half its size, keeping its pages (so only the growth is fresh memory), instead of taking a
+// fresh one.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -13,20 +15,28 @@ namespace {
 
 constexpr size_t kMiB = size_t(1) << 20;
 
-// The pool is process-wide and other tests leave small blocks in it: these tests use sizes of 170 MiB
-// and more, which no other test here asks for, each test its own range, and give back what they take.
+// The pool is process-wide and other tests leave blocks in it: each test here starts from an empty
+// pool.
+class ScratchPool : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    scratch_pool_release();
+    ASSERT_EQ(scratch_pool_kept_bytes(), 0u);
+  }
+};
+
 struct Taken {
   void* block;
   size_t bytes;
 };
 
-Taken take(size_t bytes) {
+Taken take(size_t bytes, BlockWrites writes = BlockWrites::Whole) {
   Taken t{nullptr, 0};
-  t.block = scratch_take(bytes, t.bytes);
+  t.block = scratch_take(bytes, t.bytes, writes);
   return t;
 }
 
-TEST(ScratchPool, AFreedBlockIsTakenAgainByARequestItFits) {
+TEST_F(ScratchPool, AFreedBlockIsTakenAgainByARequestItFits) {
   const Taken a = take(176 * kMiB);
   EXPECT_EQ(a.bytes, 176 * kMiB);  // 88 units of 2 MiB, 11 x 8: a size the pool keeps as asked
   EXPECT_EQ(reinterpret_cast<uintptr_t>(a.block) % (2 * kMiB), 0u);
@@ -41,7 +51,7 @@ TEST(ScratchPool, AFreedBlockIsTakenAgainByARequestItFits) {
   scratch_give_back(b.block, b.bytes);
 }
 
-TEST(ScratchPool, ARequestNoKeptBlockFitsGrowsTheLargestOfAtLeastHalfItsSize) {
+TEST_F(ScratchPool, ARequestNoKeptBlockFitsGrowsTheLargestOfAtLeastHalfItsSize) {
   const Taken small = take(240 * kMiB), large = take(352 * kMiB);  // 15 x 8 and 11 x 16 units
   std::memset(small.block, 0x11, small.bytes);
   std::memset(large.block, 0x22, large.bytes);
@@ -63,6 +73,48 @@ TEST(ScratchPool, ARequestNoKeptBlockFitsGrowsTheLargestOfAtLeastHalfItsSize) {
   EXPECT_EQ(again.block, small.block);
   scratch_give_back(again.block, again.bytes);
   scratch_give_back(grown.block, grown.bytes);
+}
+
+TEST_F(ScratchPool, EachKindOfBlockGoesBackToItsOwnKindOfOwnerFirst) {
+  // Two blocks of 208 MiB (13 x 8 units of 2 MiB), one given back by an owner that writes whole, one by
+  // an owner that writes in part, in both orders: the order of the pool's list must not decide.
+  for (bool in_part_first : {true, false}) {
+    scratch_pool_release();
+    const Taken whole = take(208 * kMiB), in_part = take(208 * kMiB, BlockWrites::InPart);
+    ASSERT_NE(whole.block, in_part.block);
+    if (in_part_first) scratch_give_back(in_part.block, in_part.bytes, BlockWrites::InPart);
+    scratch_give_back(whole.block, whole.bytes, BlockWrites::Whole);
+    if (!in_part_first) scratch_give_back(in_part.block, in_part.bytes, BlockWrites::InPart);
+    const Taken sort_scratch = take(200 * kMiB);
+    EXPECT_EQ(sort_scratch.block, whole.block) << in_part_first;
+    const Taken cache = take(200 * kMiB, BlockWrites::InPart);
+    EXPECT_EQ(cache.block, in_part.block) << in_part_first;
+    // With only the other kind kept, a request still takes it rather than fresh memory.
+    scratch_give_back(cache.block, cache.bytes, BlockWrites::InPart);
+    const Taken second_scratch = take(200 * kMiB);
+    EXPECT_EQ(second_scratch.block, in_part.block) << in_part_first;
+    scratch_give_back(sort_scratch.block, sort_scratch.bytes);
+    scratch_give_back(second_scratch.block, second_scratch.bytes);
+  }
+}
+
+TEST_F(ScratchPool, AGrowingRequestGrowsABlockOfItsOwnKindFirst) {
+  // 224 MiB blocks of both kinds (14 x 8 units of 2 MiB); 240 MiB (15 x 8) fits neither, so one is grown.
+  for (BlockWrites writes : {BlockWrites::Whole, BlockWrites::InPart}) {
+    scratch_pool_release();
+    const Taken whole = take(224 * kMiB), in_part = take(224 * kMiB, BlockWrites::InPart);
+    std::memset(whole.block, 0x33, whole.bytes);
+    std::memset(in_part.block, 0x44, in_part.bytes);
+    scratch_give_back(in_part.block, in_part.bytes, BlockWrites::InPart);
+    scratch_give_back(whole.block, whole.bytes, BlockWrites::Whole);
+    const Taken grown = take(240 * kMiB, writes);
+    EXPECT_EQ(grown.bytes, 240 * kMiB);
+    EXPECT_EQ(static_cast<const unsigned char*>(grown.block)[0], writes == BlockWrites::Whole ? 0x33 : 0x44);
+    const Taken other = take(224 * kMiB, writes == BlockWrites::Whole ? BlockWrites::InPart : BlockWrites::Whole);
+    EXPECT_EQ(other.block, writes == BlockWrites::Whole ? in_part.block : whole.block);
+    scratch_give_back(grown.block, grown.bytes, writes);
+    scratch_give_back(other.block, other.bytes);
+  }
 }
 
 }  // namespace
