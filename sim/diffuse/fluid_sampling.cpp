@@ -76,10 +76,8 @@ void sample_fluid(const NeighbourGrid& grid, std::span<const Vec3f> sorted_motio
         near.gather_within(block, box);
         scan = &near;
       }
-      for (uint32_t s = first; s < last; ++s) {
-        const uint32_t i = order[s];
-        poly6_sums(*scan, positions[i], inv_h2, 1.0f, out.neighbour_count[i], out.kernel_sum[i], out.fluid_velocity[i]);
-      }
+      poly6_sums_for(*scan, std::span(order).subspan(first, last - first), positions.data(), inv_h2, 1.0f,
+                     out.neighbour_count.data(), out.kernel_sum.data(), out.fluid_velocity.data());
     }
   });
   out.cell_order.swap(out.sorter.order());  // the sorter reuses the old buffer next time

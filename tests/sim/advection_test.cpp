@@ -2,11 +2,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <random>
 
 #include "sim/diffuse/advection.h"
 #include "sim/diffuse/fluid_sampling.h"
+#include "sim/diffuse/poly6_sums.h"
+#include "sim/grid/block_buffer.h"
 #include "tests/support/test_fluids.h"
 
 namespace spume {
@@ -76,6 +79,42 @@ TEST(FluidSampling, DenseCloudMatchesBruteForceCountsAndVelocities) {
   std::vector<uint32_t> order = samples.cell_order;
   std::sort(order.begin(), order.end());
   for (uint32_t i = 0; i < order.size(); ++i) ASSERT_EQ(order[i], i);
+}
+
+TEST(FluidSampling, PointsSummedTogetherGetTheSumsEachGetsAlone) {
+  // poly6_sums_for takes its points two at a time over the block; each point's sums must be the very
+  // bits poly6_sums gives it alone (the brute-force test above checks those), for odd and even counts.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  std::vector<Vec3f> fluid(600), motion(600);
+  for (size_t j = 0; j < fluid.size(); ++j) {
+    fluid[j] = Vec3f(u(rng), u(rng), u(rng));
+    motion[j] = Vec3f(u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f);
+  }
+  const float h = 0.25f;
+  NeighbourGrid grid;
+  grid.build(fluid, h);
+  BlockBuffer block;
+  block.gather(grid, grid.key_of(Vec3f(0.5f, 0.5f, 0.5f)), {motion});
+  std::vector<Vec3f> points(9);
+  for (auto& p : points) p = Vec3f(0.4f + 0.2f * u(rng), 0.4f + 0.2f * u(rng), 0.4f + 0.2f * u(rng));
+  for (uint32_t count = 1; count <= points.size(); ++count) {
+    std::vector<uint32_t> which(count);
+    for (uint32_t k = 0; k < count; ++k) which[k] = points.size() - 1 - k;  // any order, not 0, 1, ...
+    std::vector<float> n(points.size(), -1.0f), kernel(points.size(), -1.0f);
+    std::vector<Vec3f> v(points.size(), Vec3f::Constant(-1.0f));
+    poly6_sums_for(block, which, points.data(), 1.0f / (h * h), 1.0f, n.data(), kernel.data(), v.data());
+    for (uint32_t i : which) {
+      float n1, kernel1;
+      Vec3f v1;
+      poly6_sums(block, points[i], 1.0f / (h * h), 1.0f, n1, kernel1, v1);
+      ASSERT_EQ(std::bit_cast<uint32_t>(n[i]), std::bit_cast<uint32_t>(n1)) << count << " " << i;
+      ASSERT_EQ(std::bit_cast<uint32_t>(kernel[i]), std::bit_cast<uint32_t>(kernel1)) << count << " " << i;
+      for (int c = 0; c < 3; ++c) ASSERT_EQ(std::bit_cast<uint32_t>(v[i][c]), std::bit_cast<uint32_t>(v1[c])) << count;
+      ASSERT_GT(n1, 0.0f);  // the points lie in the fluid
+    }
+    for (uint32_t i = 0; i < points.size() - count; ++i) ASSERT_EQ(n[i], -1.0f) << "point " << i << " not asked for";
+  }
 }
 
 TEST(Classification, PaperThresholdsAt5And6And20And21Neighbours) {
