@@ -1,6 +1,12 @@
 // sRGB transfer curve (IEC 61966-2-1) against values worked out by hand from the standard's formula.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
 #include "render/image/image.h"
 
 namespace spume {
@@ -39,6 +45,42 @@ TEST(ImageSrgb, PowerSegmentKnownValues) {
 TEST(ImageSrgb, RoundTrips) {
   for (int code = 0; code < 256; ++code) EXPECT_EQ(srgb_encode8(srgb_decode8(uint8_t(code))), code) << code;
   for (float x = 0.0f; x <= 1.0f; x += 0.0137f) EXPECT_NEAR(srgb_decode(srgb_encode(x)), x, 1e-6f) << x;
+}
+
+// The 8-bit code as the standard defines it: the curve in double, rounded to float, times 255, rounded.
+int code_by_formula(float linear) {
+  if (!(linear > 0.0f)) return 0;
+  const double x = std::min(double(linear), 1.0);
+  const float e = float(x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055);
+  return int(std::lround(double(e) * 255.0));
+}
+
+TEST(ImageSrgb, EightBitCodesAreTheFormulasAtEveryStepBetweenCodes) {
+  // Where the formula steps from code k-1 to k (found here by bisection over the floats' bit
+  // patterns), the floats just below and just above get the formula's codes; so do floats spread
+  // over (0, 1.25] and the special values.
+  const uint32_t one = std::bit_cast<uint32_t>(1.0f);
+  for (int k = 1; k < 256; ++k) {
+    uint32_t lo = 0, hi = one;
+    while (hi - lo > 1) {
+      const uint32_t mid = lo + (hi - lo) / 2;
+      (code_by_formula(std::bit_cast<float>(mid)) >= k ? hi : lo) = mid;
+    }
+    for (uint32_t b = hi - 3; b <= hi + 3; ++b) {
+      const float x = std::bit_cast<float>(b);
+      ASSERT_EQ(srgb_encode8(x), code_by_formula(x)) << "code " << k << ", x = " << x;
+    }
+  }
+  for (uint32_t b = 0; b <= std::bit_cast<uint32_t>(1.25f); b += 4099) {
+    const float x = std::bit_cast<float>(b);
+    ASSERT_EQ(srgb_encode8(x), code_by_formula(x)) << x;
+  }
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  for (float x : {0.0f, -0.0f, -1.0f, -kInf, kInf, std::numeric_limits<float>::quiet_NaN(),
+                  std::numeric_limits<float>::denorm_min(), std::numeric_limits<float>::max()})
+    EXPECT_EQ(srgb_encode8(x), code_by_formula(x)) << x;
+  EXPECT_EQ(srgb_encode8(kInf), 255);
+  EXPECT_EQ(srgb_encode8(std::numeric_limits<float>::quiet_NaN()), 0);
 }
 
 TEST(ImageSrgb, ImageConversion) {
