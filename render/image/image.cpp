@@ -50,9 +50,9 @@ class SrgbEncoder {
       threshold_[size_t(k)] = std::bit_cast<float>(hi);
     }
     threshold_[0] = 0.0f, threshold_[256] = INFINITY;
+    uint8_t code = 0;  // the buckets start in increasing order, so the count carries over
     for (size_t b = 0; b < kBuckets; ++b) {
       const float start = std::bit_cast<float>(kFirstBits + uint32_t(b << kBucketShift));
-      uint8_t code = 0;
       while (code < 255 && start >= threshold_[code + 1u]) ++code;
       first_[b] = code;
     }

@@ -35,42 +35,36 @@ std::filesystem::path temporary_beside(const std::filesystem::path& path) {
   return tmp;
 }
 
-}  // namespace
-
-void write_bytes_atomically(const std::filesystem::path& path, const char* data, size_t size) {
+// Writes `path` through a temporary beside it: fill(tmp) writes the temporary (throwing Error when it
+// cannot), which is then renamed into place; on any failure the temporary is removed.
+void replace_atomically(const std::filesystem::path& path, const std::function<void(const std::filesystem::path&)>& fill) {
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::path tmp = temporary_beside(path);
   try {
-    write_file_bytes(tmp, data, size, path.string());
-  } catch (...) {
-    fs::remove(tmp, ec);
-    throw;
-  }
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    fail(path.string(), ": cannot rename temporary file into place: ", ec.message());
-  }
-}
-
-void write_file_atomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const fs::path tmp = temporary_beside(path);
-  try {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) fail(path.string(), ": cannot open ", tmp.string(), " for writing");
-    write(out);
-    out.flush();
-    if (!out) fail(path.string(), ": write failed (disk full?)");
-    out.close();
+    fill(tmp);
     fs::rename(tmp, path, ec);
     if (ec) fail(path.string(), ": cannot rename temporary file into place: ", ec.message());
   } catch (...) {
     fs::remove(tmp, ec);
     throw;
   }
+}
+
+}  // namespace
+
+void write_bytes_atomically(const std::filesystem::path& path, const char* data, size_t size) {
+  replace_atomically(path, [&](const std::filesystem::path& tmp) { write_file_bytes(tmp, data, size, path.string()); });
+}
+
+void write_file_atomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write) {
+  replace_atomically(path, [&](const std::filesystem::path& tmp) {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) fail(path.string(), ": cannot open ", tmp.string(), " for writing");
+    write(out);
+    out.flush();
+    if (!out) fail(path.string(), ": write failed (disk full?)");
+  });
 }
 
 int remove_dead_temporaries(const std::filesystem::path& dir) {
