@@ -39,8 +39,19 @@ class CacheBytes {
 // The most a column of `bytes` raw bytes can take stored, its 16-byte prefix included.
 size_t column_bound(size_t bytes);
 
-// Appends the column of `bytes` bytes at data (values of `typesize` bytes) to out.
-void append_column(CacheBytes& out, const void* data, size_t bytes, size_t typesize, bool bit_shuffle = false);
+// Blosc's block, the unit zstd compresses on its own (it starts afresh at each one): fixed by the
+// frame, never Blosc's choice, so that the bytes depend on the data alone.
+constexpr size_t kSmallColumnBlockBytes = size_t(256) << 10;
+constexpr size_t kLargeColumnBlockBytes = kColumnChunkBytes;  // a chunk is one block
+// Frames of at least this many particles take the large blocks (column_block_bytes).
+constexpr size_t kLargeBlockParticles = size_t(1) << 21;
+// The block for the columns of a frame of `particles` particles.
+size_t column_block_bytes(size_t particles);
+
+// Appends the column of `bytes` bytes at data (values of `typesize` bytes) to out, compressed in
+// blocks of `block_bytes` (column_block_bytes).
+void append_column(CacheBytes& out, const void* data, size_t bytes, size_t typesize, bool bit_shuffle,
+                   size_t block_bytes);
 
 // Reads the next column from r into dst, which holds exactly `bytes`: fails naming the file and `what`
 // when the column claims another size, runs past the file, or a chunk is corrupt.

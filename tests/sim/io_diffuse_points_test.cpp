@@ -11,6 +11,7 @@
 
 #include "sim/io/column_codec.h"
 #include "sim/io/spume_cache.h"
+#include "tests/support/compact_cache_layout.h"
 #include "tests/support/crc_trailer.h"
 #include "tests/support/error_of.h"
 #include "tests/support/files.h"
@@ -22,10 +23,7 @@ using namespace spume::testing;
 
 namespace {
 
-constexpr size_t kHeaderBytes = 136;
 constexpr double kStep = 0.01 / 64;
-// The quantized columns in file order (spume_cache.h).
-enum Column { kCells, kCellCounts, kOffsets, kVelocities, kLifetimes, kTypes, kIds, kColumns };
 
 DiffuseFrame spread_frame(size_t n) {
   std::mt19937 rng(7);
@@ -41,20 +39,6 @@ DiffuseFrame spread_frame(size_t n) {
     d.types[i] = DiffuseType(i % 3);
   }
   return d;
-}
-
-// Where each column starts (its 16-byte prefix: raw bytes, stored bytes), walked from the layout.
-std::vector<size_t> column_starts(const std::string& file) {
-  std::vector<size_t> at;
-  size_t pos = kHeaderBytes;
-  for (int c = 0; c < kColumns; ++c) {
-    at.push_back(pos);
-    uint64_t stored = 0;
-    std::memcpy(&stored, file.data() + pos + 8, 8);
-    pos += 16 + stored;
-  }
-  EXPECT_EQ(pos, file.size() - 4);
-  return at;
 }
 
 struct Written {
@@ -117,7 +101,7 @@ TEST(DiffusePoints, ATypeOutsideTheThreeIsRefused) {
   read_column(r, types.data(), types.size(), "type");
   types[5 / 4] |= uint8_t(3u << (2 * (5 % 4)));
   CacheBytes column;
-  append_column(column, types.data(), types.size(), 1);
+  append_column(column, types.data(), types.size(), 1, false, column_block_bytes(w.n));
   const std::string edited = w.bytes.substr(0, w.columns[kTypes]) + std::string(column.view()) +
                              w.bytes.substr(w.columns[kIds]);
   const fs::path p = w.dir.write("type3.spd", with_fixed_crc(edited));
