@@ -44,10 +44,11 @@ void CacheBytes::append(const void* data, size_t bytes) {
 
 // One block a chunk compresses large frames faster and smaller: zstd keeps its context over 1 MiB
 // instead of 256 KiB. Measured on the lighthouse (one core, zstd at level 1), frame 140 (13.6M
-// particles): 412 against 360 ms, 11.76 against 11.67 bytes a particle; every frame of 2.1M or more
-// was smaller too. Below about 2M, a block spans a column's x, y and z planes, which bit-shuffle
-// worse together: the SPlisHSPlasH dam break's frame 20 (146k) would grow from 11.54 to 12.27
-// bytes a particle, and the lighthouse's frames of 0.9-1.9M by up to 0.13.
+// particles): 412 against 360 ms, 11.76 against 11.67 bytes a particle; of its 12 frames of 2.1M or
+// more tried, all were faster and all but one smaller (that one by 0.002). Below about 2M, a block
+// spans two or three of a column's x, y and z planes, which bit-shuffle worse together: the
+// SPlisHSPlasH dam break's frame 20 (146k) would grow from 11.54 to 12.27 bytes a particle, the
+// lighthouse's frames of 1.6-1.9M by up to 0.07 (README, Paper scale).
 size_t column_block_bytes(size_t particles) {
   return particles >= kLargeBlockParticles ? kLargeColumnBlockBytes : kSmallColumnBlockBytes;
 }
