@@ -15,6 +15,7 @@
 #include "tests/support/crc_trailer.h"
 #include "tests/support/error_of.h"
 #include "tests/support/files.h"
+#include "tests/support/spread_diffuse_frame.h"
 #include "tests/support/temp_dir.h"
 
 namespace fs = std::filesystem;
@@ -25,22 +26,6 @@ namespace {
 
 constexpr double kStep = 0.01 / 64;
 
-DiffuseFrame spread_frame(size_t n) {
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  DiffuseFrame d;
-  d.index = 40, d.time = 1.6;
-  d.resize(n);
-  for (size_t i = 0; i < n; ++i) {
-    d.ids[i] = diffuse_id(uint32_t(i), 3, 0);
-    d.positions[i] = Vec3f(2 * u(rng), 0.5f * u(rng), u(rng));
-    d.velocities[i] = Vec3f(u(rng), -u(rng), 0.1f);
-    d.lifetimes[i] = 2 * u(rng);
-    d.types[i] = DiffuseType(i % 3);
-  }
-  return d;
-}
-
 struct Written {
   TempDir dir;
   fs::path good;
@@ -48,7 +33,7 @@ struct Written {
   std::vector<size_t> columns;
   size_t n;
   explicit Written(size_t count) : good(dir.path / "good.spd"), n(count) {
-    write_diffuse_cache(good, spread_frame(n), kStep);
+    write_diffuse_cache(good, spread_diffuse_frame(n), kStep);
     bytes = read_file(good);
     columns = column_starts(bytes);
   }
