@@ -124,9 +124,15 @@ FastestParticle fastest_particle(const BlowUpLimits& limits, const Particles& p)
 
 void check_blow_up(const BlowUpLimits& limits, const FluidSolverParams& params, const Particles& p,
                    double density_error, double t) {
-  const std::string advice =
+  std::string advice =
       str("; the solver is unstable at these settings: lower fluid.solver.max_dt (now ", params.max_dt,
           " s) or fluid.solver.cfl (now ", params.cfl, ")");
+  const double deep_water_dt =
+      kDeepWaterStepFactor * std::sqrt(2.0 * double(params.particle_radius) / std::max(limits.gravity, 1e-30));
+  if (limits.gravity > 0.0 && (params.max_dt > deep_water_dt || !params.extrapolate_wall_pressure))
+    advice += str("; deep water (tens of particle layers) has run healthy at max_dt <= ", kDeepWaterStepFactor,
+                  " sqrt(2 r / |g|) = ", deep_water_dt,
+                  " s with fluid.solver.wall_pressure = extrapolated (README: Deep fluid against walls)");
   if (!(density_error <= limits.max_density_error))
     fail("fluid solver blew up at t = ", t, " s: the average compression after the density solve is ",
          100.0 * density_error, "%, above the bound ", 100.0 * limits.max_density_error,
