@@ -97,8 +97,9 @@ inline constexpr KeySpec min_dt{.path = "fluid.solver.min_dt", .unit = "s", .val
                                 .lo_bound = Closed, .hi_bound = Closed, .doc = "smallest time step (double)"};
 inline constexpr KeySpec max_dt{.path = "fluid.solver.max_dt", .unit = "s", .value = {5e-3}, .lo = 1e-9, .hi = 1,
                                 .lo_bound = Closed, .hi_bound = Closed,
-                                .doc = "largest time step, at least min_dt (double); deep water at r below 1 cm needs 1-2.5 ms "
-                                       "(README: Deep fluid against walls)"};
+                                .doc = "largest time step, at least min_dt (double); deep water (tens of particle layers) at r "
+                                       "below 1 cm needs about 0.04 sqrt(2 r / |g|) (1.5 ms at 7.3 mm) with wall_pressure = "
+                                       "extrapolated (README: Deep fluid against walls)"};
 inline constexpr KeySpec density_tolerance{.path = "fluid.solver.density_tolerance", .value = {5e-4}, .lo = 1e-7,
                                            .hi = 0.1, .lo_bound = Closed, .hi_bound = Closed,
                                            .doc = "average compression the density solve stops at"};
