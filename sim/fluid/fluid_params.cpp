@@ -30,6 +30,7 @@ void validate(const FluidSolverParams& p) {
   check(s::max_divergence_iterations, p.max_divergence_iterations);
   check(s::boundary_spacing, p.boundary_spacing);
   check(s::push_out_skin, p.push_out_skin);
+  check(s::start_clearance, p.start_clearance);
   if (!finite(p.gravity)) fail("fluid solver: gravity must be finite");
   if (p.min_dt > p.max_dt) fail("fluid solver: min_dt ", p.min_dt, " is above max_dt ", p.max_dt);
   if (p.min_density_iterations > p.max_density_iterations)

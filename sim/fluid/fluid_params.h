@@ -56,6 +56,10 @@ struct FluidSolverParams {
   float boundary_spacing = declared_float(keys::solver::boundary_spacing);
   // A fluid particle found inside a solid after a step is put this far (in units of r) outside it.
   float push_out_skin = declared_float(keys::solver::push_out_skin);
+  // Starting lattice points closer than this (in units of r) to a box or sphere are left out, as
+  // those inside are. A point that close overlaps the solid's boundary samples and is flung out on
+  // the first steps (README, Deep fluid against walls).
+  float start_clearance = declared_float(keys::solver::start_clearance);
   // Walls press back with each fluid particle's own pressure ([AIA12]), or, when true, with the fluid's
   // pressure extrapolated into them (boundary_pressure.h).
   bool extrapolate_wall_pressure = false;

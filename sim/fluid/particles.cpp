@@ -58,7 +58,8 @@ BlockLattice block_lattice(const FluidBlock& b, float radius) {
   return l;
 }
 
-Particles fill_blocks(const std::vector<FluidBlock>& blocks, float radius, const SolidSet& solids, size_t& skipped) {
+Particles fill_blocks(const std::vector<FluidBlock>& blocks, float radius, const SolidSet& solids, float clearance,
+                      size_t& skipped) {
   const double d = 2.0 * double(radius);
   std::vector<Vec3f> points;
   skipped = 0;
@@ -73,7 +74,7 @@ Particles fill_blocks(const std::vector<FluidBlock>& blocks, float radius, const
       for (int j = 0; j < n[1]; ++j)
         for (int i = 0; i < n[0]; ++i) {
           const Vec3f p(float(l.start[0] + i * d), float(l.start[1] + j * d), float(l.start[2] + k * d));
-          if (solids.inside(p)) {
+          if (solids.inside(p) || (clearance > 0.0f && solids.obstacle_within(p, clearance))) {
             ++skipped;
             continue;
           }

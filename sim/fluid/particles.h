@@ -41,7 +41,9 @@ struct BlockLattice {
 BlockLattice block_lattice(const FluidBlock& block, float radius);
 
 // Fills the blocks on lattices of spacing 2r centred in each block, in block order, then z, y, x
-// (x fastest); ids follow that order. Lattice points inside `solids` are skipped and counted.
-Particles fill_blocks(const std::vector<FluidBlock>& blocks, float radius, const SolidSet& solids, size_t& skipped);
+// (x fastest); ids follow that order. Lattice points inside `solids`, or within `clearance` (m) of
+// a box or sphere, are skipped and counted.
+Particles fill_blocks(const std::vector<FluidBlock>& blocks, float radius, const SolidSet& solids, float clearance,
+                      size_t& skipped);
 
 }  // namespace spume::fluid

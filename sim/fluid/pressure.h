@@ -21,8 +21,9 @@
 // Deep fluid against walls). Mirroring (k_b = k_i) fixes the floor but leaves a wall uniform in pressure
 // along it, so a particle at a side wall gets only its fluid half's share of the vertical gradient (a
 // quarter in an edge): edges then ran down at 0.9 m/s. The extrapolated form is not the default: with
-// it a floating box's draft falls 12% short of Archimedes' (6% with the own form), and where a solid
-// cuts the starting lattice the doubled wall push flings the overlapping particles (README).
+// it a floating box's draft falls 12% short of Archimedes' (6% with the own form). (Where a solid cut
+// the starting lattice the doubled wall push flung the overlapping particles, until the start
+// clearance, fluid.solver.start_clearance, left such points out: README.)
 //
 // Warm start ([BK17]; optional, off by default): each solve first applies half the previous
 // step's total pressure where the fluid is compressed now. It saves about half the iterations in

@@ -39,7 +39,7 @@ FluidSolver::FluidSolver(FluidSolverParams params, const std::vector<FluidBlock>
   volume_ = 8.0f * r * r * r;
   dt_prev_ = params_.max_dt;
   const SolidSet now = solids_.at_time(0.0);
-  particles_ = fluid::fill_blocks(blocks, r, now, stats_.removed_at_start);
+  particles_ = fluid::fill_blocks(blocks, r, now, params_.start_clearance * r, stats_.removed_at_start);
   if (particles_.size() == 0) fail("fluid solver: the fluid blocks hold no particles at radius ", r, " m");
   bodies_ = fluid::RigidBodies(solids_, params_.gravity, 0.5f * r);
   coupling_.body_of_solid.resize(solids_.solids().size());

@@ -278,6 +278,22 @@ bool SolidSet::inside(const Vec3f& p) const {
   return false;
 }
 
+bool SolidSet::obstacle_within(const Vec3f& p, float reach) const {
+  for (size_t i = 0; i < solids_.size(); ++i) {
+    const Solid& s = solids_[i];
+    if (s.kind == Solid::Kind::Tank || far_from(i, p, reach)) continue;
+    if (s.kind == Solid::Kind::Sphere) {
+      if ((p - s.center).norm() < s.radius + reach) return true;
+      continue;
+    }
+    // Box: the distance from p to the box, in the box's own frame.
+    const Vec3f local = s.orientation.conjugate() * (p - s.centre());
+    const Vec3f half = 0.5f * (s.max - s.min);
+    if ((local.cwiseAbs() - half).cwiseMax(0.0f).norm() < reach) return true;
+  }
+  return false;
+}
+
 bool SolidSet::inside_other_than(const Vec3f& p, const Solid& skip) const {
   for (size_t i = 0; i < solids_.size(); ++i)
     if (&solids_[i] != &skip && !far_from(i, p, 0.0f) && contains(solids_[i], p)) return true;

@@ -135,6 +135,9 @@ class SolidSet {
 
   // True when p is inside a solid (or outside a tank's walls): push_out would move it.
   bool inside(const Vec3f& p) const;
+  // True when p is inside a box or sphere or within `reach` (> 0, m) of one (Euclidean distance to
+  // the solid as stored, rotated boxes in their own frame). Tanks are not counted.
+  bool obstacle_within(const Vec3f& p, float reach) const;
 
   // Whether p lies more than `reach` (>= 0) outside solid i's bounding box: then no ball of radius
   // `reach` around p meets that solid, and the exact tests can be skipped. A broad phase for the

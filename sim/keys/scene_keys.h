@@ -131,6 +131,11 @@ inline constexpr KeySpec push_out_skin{.path = "fluid.solver.push_out_skin", .un
                                        .hi = 1, .lo_bound = Closed, .hi_bound = Closed,
                                        .doc = "a particle found inside a solid goes this far outside it (more "
                                               "adds energy)"};
+inline constexpr KeySpec start_clearance{.path = "fluid.solver.start_clearance", .unit = "r", .value = {0.5}, .lo = 0,
+                                         .hi = 4, .lo_bound = Closed, .hi_bound = Closed,
+                                         .doc = "starting lattice points closer than this to a box or sphere are "
+                                                "left out, so none overlaps the solid's samples and is flung out "
+                                                "(0: only those inside; README: Deep fluid against walls)"};
 inline constexpr KeySpec wall_pressure{.path = "fluid.solver.wall_pressure", .type = Choice,
                                        .choices = "own|extrapolated",
                                        .doc = "the pressure a wall pushes back with: each fluid particle's own "
@@ -139,7 +144,8 @@ inline constexpr KeySpec wall_pressure{.path = "fluid.solver.wall_pressure", .ty
 inline constexpr auto all = std::to_array<const KeySpec*>(
     {&viscosity, &boundary_viscosity, &xsph, &cfl, &min_dt, &max_dt, &density_tolerance, &min_density_iterations,
      &max_density_iterations, &divergence_solve, &divergence_tolerance, &min_divergence_iterations,
-     &max_divergence_iterations, &warm_start, &boundary_spacing, &push_out_skin, &wall_pressure});
+     &max_divergence_iterations, &warm_start, &boundary_spacing, &push_out_skin, &start_clearance,
+     &wall_pressure});
 }  // namespace solver
 
 namespace solids {

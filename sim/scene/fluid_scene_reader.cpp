@@ -54,6 +54,7 @@ FluidSolverSetup read_fluid_solver(const ParamReader& fluid, const Vec3f& gravit
   p.warm_start = s.boolean(k::warm_start);
   p.boundary_spacing = float(s.number(k::boundary_spacing));
   p.push_out_skin = float(s.number(k::push_out_skin));
+  p.start_clearance = float(s.number(k::start_clearance));
   p.extrapolate_wall_pressure = s.choice(k::wall_pressure) == "extrapolated";
   with_context(fluid.source() + ": " + fluid.path_of("solver"), [&] { validate(p); });
   return setup;
