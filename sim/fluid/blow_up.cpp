@@ -124,20 +124,23 @@ FastestParticle fastest_particle(const BlowUpLimits& limits, const Particles& p)
 
 void check_blow_up(const BlowUpLimits& limits, const FluidSolverParams& params, const Particles& p,
                    double density_error, double t) {
-  std::string advice =
-      str("; the solver is unstable at these settings: lower fluid.solver.max_dt (now ", params.max_dt,
-          " s) or fluid.solver.cfl (now ", params.cfl, ")");
-  const double deep_water_dt =
-      kDeepWaterStepFactor * std::sqrt(2.0 * double(params.particle_radius) / std::max(limits.gravity, 1e-30));
-  if (limits.gravity > 0.0 && (params.max_dt > deep_water_dt || !params.extrapolate_wall_pressure))
-    advice += str("; deep water (tens of particle layers) has run healthy at max_dt <= ", kDeepWaterStepFactor,
-                  " sqrt(2 r / |g|) = ", deep_water_dt,
-                  " s with fluid.solver.wall_pressure = extrapolated (README: Deep fluid against walls)");
+  // Formatted only when the run has blown up: this check runs after every step.
+  auto advice = [&] {
+    std::string a = str("; the solver is unstable at these settings: lower fluid.solver.max_dt (now ", params.max_dt,
+                        " s) or fluid.solver.cfl (now ", params.cfl, ")");
+    const double deep_water_dt =
+        kDeepWaterStepFactor * std::sqrt(2.0 * double(params.particle_radius) / std::max(limits.gravity, 1e-30));
+    if (limits.gravity > 0.0 && (params.max_dt > deep_water_dt || !params.extrapolate_wall_pressure))
+      a += str("; deep water (tens of particle layers) has run healthy at max_dt <= ", kDeepWaterStepFactor,
+               " sqrt(2 r / |g|) = ", deep_water_dt,
+               " s with fluid.solver.wall_pressure = extrapolated (README: Deep fluid against walls)");
+    return a;
+  };
   if (!(density_error <= limits.max_density_error))
     fail("fluid solver blew up at t = ", t, " s: the average compression after the density solve is ",
          100.0 * density_error, "%, above the bound ", 100.0 * limits.max_density_error,
          "% (a converged solve leaves fluid.solver.density_tolerance, ", 100.0 * params.density_tolerance, "%)",
-         advice);
+         advice());
   const FastestParticle f = fastest_particle(limits, p);
   if (f.fall_speed > limits.max_fall_speed) {
     const size_t i = f.index;
@@ -146,7 +149,7 @@ void check_blow_up(const BlowUpLimits& limits, const FluidSolverParams& params, 
          f.fall_speed, " m/s, above the bound ", limits.max_fall_speed, " m/s = ", kSpeedFactor,
          " x max(sqrt(2 |g| H) = ", std::sqrt(2.0 * limits.gravity * limits.height), " m/s with H = ", limits.height,
          " m the height of the box around the fluid and solids, 2 x the fastest solid's ", limits.solid_speed,
-         " m/s, 1 m/s)", advice);
+         " m/s, 1 m/s)", advice());
   }
 }
 

@@ -286,10 +286,8 @@ bool SolidSet::obstacle_within(const Vec3f& p, float reach) const {
       if ((p - s.center).norm() < s.radius + reach) return true;
       continue;
     }
-    // Box: the distance from p to the box, in the box's own frame.
-    const Vec3f local = s.orientation.conjugate() * (p - s.centre());
-    const Vec3f half = 0.5f * (s.max - s.min);
-    if ((local.cwiseAbs() - half).cwiseMax(0.0f).norm() < reach) return true;
+    Vec3f normal;
+    if (oriented_box_distance(s, p, normal) < reach) return true;
   }
   return false;
 }
