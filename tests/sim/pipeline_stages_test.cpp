@@ -169,6 +169,23 @@ TEST_F(PipelineStages, SolverStatsGiveEachFramesFastestParticle) {
   for (int k = 0; k <= 3; ++k) EXPECT_NEAR(std::stod(rows[k + 1][9]), 9.81 * k / 20.0, 1e-3) << "frame " << k;
 }
 
+TEST_F(PipelineStages, TheFluidStagesLastLineNamesTheRunsFastestParticle) {
+  // Free fall again: the fastest particle of the run is any particle of the last frame, at g t.
+  Json json = tiny_solver_scene();
+  json.erase("solids");
+  FluidStageOptions fluid;
+  fluid.out_root = out;
+  fluid.quiet = false;
+  ::testing::internal::CaptureStderr();
+  run_fluid_stage(scene_of(json), fluid);
+  const std::string log = ::testing::internal::GetCapturedStderr();
+  const size_t at = log.rfind("fastest particle ");
+  ASSERT_NE(at, std::string::npos) << log;
+  const std::string said = log.substr(at + 17);
+  EXPECT_NEAR(std::stod(said), 9.81 * 3 / 20.0, 1e-3) << said;
+  EXPECT_NE(said.find(" m/s (frame 3) -> "), std::string::npos) << said;
+}
+
 TEST(SceneKeys, SameSettingsInAnyKeyOrderAgreeAndFrameRangeIsLeftOut) {
   Json a = tiny_solver_scene();
   Json b = Json::parse(R"({
