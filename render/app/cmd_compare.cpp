@@ -16,6 +16,7 @@
 #include "render/app/compare/compare_report.h"
 #include "render/app/compare/summary_files.h"
 #include "render/app/compare/threshold_args.h"
+#include "sim/core/messages.h"
 #include "sim/core/parallel.h"
 #include "sim/core/progress.h"
 
@@ -33,7 +34,7 @@ std::vector<cli::OptionSpec> compare_options() {
           {"frames", "SPEC", "numbered frames only: 7, 0-99, 0-99:2, 1-3,5,10-20"},
           {"scale", "N", "difference images show |reference - new| x N (default 16)"},
           {"threads", "N", "worker threads (one per core; results do not depend on it)"},
-          {"quiet", "", "no progress on stderr"}};
+          cli::quiet_option()};
 }
 
 // The worst failing frames, one line each, then one line for the whole comparison.
@@ -93,8 +94,9 @@ int compare_frames(const cli::ParsedArgs& args) {
   const FrameSet set = resolve_frames(args.positional[0], args.positional[1], args.value("frames"));
   if (opts.out) check_report_folder(*opts.out);
   const bool quiet = args.has("quiet");
-  if (!quiet)
-    for (const std::string& note : set.notes) std::fprintf(stderr, "compare: %s\n", note.c_str());
+  for (const std::string& note : set.notes)
+    if (messages::is_warning(note)) messages::warning(note);
+    else messages::note("compare: " + note);
   Progress progress("compare", set.frames.size(), quiet);
   std::vector<FrameResult> results;
   try {

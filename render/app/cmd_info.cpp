@@ -8,7 +8,9 @@
 #include <set>
 
 #include "render/app/commands.h"
+#include "render/app/output_folder_info.h"
 #include "sim/core/error.h"
+#include "sim/core/messages.h"
 #include "sim/diffuse/narrow_band.h"
 #include "sim/io/fluid_import.h"
 #include "sim/io/fluid_survey.h"
@@ -100,7 +102,17 @@ int info(const cli::ParsedArgs& args) {
   if (args.positional.empty()) cli::usage_fail("no FILE given");
   for (const auto& path : args.positional) {
     std::error_code ec;
-    if (fs::is_directory(path, ec)) fail_on_directory(path);
+    if (fs::is_directory(path, ec)) {
+      const std::optional<OutputFolder> outputs = describe_output_folder(path);
+      if (!outputs) fail_on_directory(path);
+      std::printf("%s", outputs->description.c_str());
+      std::fflush(stdout);
+      // On stderr too, so that a script reading only the status and stderr learns it.
+      if (outputs->warnings > 0)
+        messages::warning(str(path, ": its outputs were made with ", outputs->warnings, " warning",
+                              outputs->warnings > 1 ? "s" : "", " (listed above)"));
+      continue;
+    }
     std::printf("%s%s\n", describe_particle_file(path).c_str(), interior_line(path).c_str());
   }
   return 0;
@@ -115,7 +127,9 @@ Command cmd_info() {
   spec.summary = "what a particle file or cache holds: format, counts, attributes, bounds";
   spec.notes = {"formats: .bgeo .bgeo.gz .bgeo.sc .bhclassic .vtk .vtu .vtp .ply .vdb, spume caches .spf .spd",
                 "a .vdb: its grids, point attributes and codecs, and the up axis and velocity units spume takes",
-                "a directory is refused with a list of the particle files in it"};
+                "a scene's output folder (OUT/<scene>): its finished caches and the warnings given when they were made",
+                "another directory is refused with a list of the particle files in it"};
+  spec.options = {cli::quiet_option()};
   spec.max_operands = SIZE_MAX;
   return {spec, info};
 }

@@ -99,7 +99,7 @@ int lookdev(const cli::ParsedArgs& args) {
     setup.render.height = std::max(1, int(std::lround(double(setup.render.height) * tile_width / full_width)));
     setup.render.width = tile_width;
     SceneRender scene = scene_render(setup.sim, setup.out_root);
-    if (c == 0) print_input_warnings(scene, args.has("quiet"));
+    if (c == 0) print_input_warnings(scene);
     PreparedRender prepared = prepare_render(scene.scene, setup.render);
     const std::vector<int>& frames = scene.scene.frames;
     if (frame < 0) {

@@ -27,10 +27,9 @@ std::vector<cli::OptionSpec> render_options() {
 }
 
 // The render stage over the frames --frames selects, once the caches they need are found current.
-// `warn`: print the inputs' warnings (unless the diffuse stage of a run has printed them).
-RenderStageSummary render_frames(const cli::ParsedArgs& args, const SceneSetup& setup, bool warn) {
+RenderStageSummary render_frames(const cli::ParsedArgs& args, const SceneSetup& setup) {
   SceneRender scene = scene_render(setup.sim, setup.out_root);
-  print_input_warnings(scene, setup.quiet || !warn);
+  print_input_warnings(scene);
   PreparedRender prepared = prepare_render(scene.scene, setup.render);
   const std::vector<int> frames = frames_to_render(scene.scene, args.value("frames"));
   check_diffuse_caches(setup.sim, scene, prepared.settings, frames);
@@ -65,7 +64,7 @@ int render(const cli::ParsedArgs& args) {
   if (auto frames = args.value("frames")) cli::check_frame_spec(*frames, "--frames");
   const SceneSetup setup = load_scene_setup(args);
   const auto lock = lock_scene_output(setup, OutputLock::Mode::Shared, "spume render");
-  finish_render(render_frames(args, setup, true), args, setup);
+  finish_render(render_frames(args, setup), args, setup);
   return 0;
 }
 
@@ -93,7 +92,7 @@ int run(const cli::ParsedArgs& args) {
       report("fluid solver", !simulated.fluid.reused, false);
     report("diffuse simulation", diffuse && !simulated.diffuse.reused, false);
   }
-  finish_render(render_frames(args, setup, !diffuse), args, setup);  // the diffuse stage printed them
+  finish_render(render_frames(args, setup), args, setup);
   return 0;
 }
 

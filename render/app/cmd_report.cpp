@@ -113,7 +113,7 @@ Command cmd_report() {
       {"only", "LIST", "studies to run, comma-separated: " + allowed_studies() + " (default: all)"},
       {"out", "DIR", "output root (default out/): the report goes to DIR/report/, scene caches to DIR/<scene>/"},
       {"threads", "N", "worker threads (default: one per core)"},
-      {"quiet", "", "no progress on stderr"},
+      cli::quiet_option(),
   };
   spec.runs_without_arguments = true;  // the whole report on the default scene
   return {spec, report_command};

@@ -9,6 +9,7 @@
 
 #include "render/app/commands.h"
 #include "sim/core/error.h"
+#include "sim/core/messages.h"
 #include "sim/core/params.h"
 #include "render/app/version_info.h"
 
@@ -69,6 +70,8 @@ int run(const Command& command, const std::vector<std::string>& args) {
       std::fputs(cli::help_text(spec).c_str(), stdout);
       return cli::kExitOk;
     }
+    // --quiet hides progress and notes in every stage, never warnings (sim/core/messages.h).
+    messages::set_quiet(parsed.has("quiet"));
     if (parsed.positional.size() > spec.max_operands)
       cli::usage_fail("expected ", spec.forms.front(), "; found ", parsed.positional.size(),
                       " operands (", parsed.positional[spec.max_operands], " is one too many)");

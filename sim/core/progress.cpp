@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include "sim/core/error.h"
+#include "sim/core/messages.h"
 
 namespace spume {
 
@@ -21,9 +22,7 @@ Progress::Progress(std::string label, size_t total, bool quiet, double partial_i
                         : terminal_        ? kPartialIntervalTerminal
                                            : kPartialIntervalLog) {}
 
-Progress::~Progress() {
-  if (open_line_) std::fputc('\n', stderr);
-}
+Progress::~Progress() { messages::end_progress_line(); }
 
 void Progress::update(size_t done, const std::string& note) {
   if (quiet_) return;
@@ -53,28 +52,21 @@ void Progress::partial(size_t done, const std::string& note) {
 }
 
 void Progress::print(const std::string& line) {
-  if (terminal_) {
-    std::fprintf(stderr, "\r\033[K%s", line.c_str());
-    open_line_ = true;
-  } else {
-    std::fprintf(stderr, "%s\n", line.c_str());
-  }
-  std::fflush(stderr);
+  messages::progress_line(line, terminal_);
   since_line_.restart();
 }
 
 void Progress::finish(const std::string& note) {
   if (quiet_) return;
   const double elapsed = since_start_.seconds();
-  if (open_line_) std::fputc('\n', stderr), open_line_ = false;
-  std::fprintf(stderr, "%s: %zu frames in %s%s%s\n", label_.c_str(), total_, format_duration(elapsed).c_str(),
-               note.empty() ? "" : "  ", note.c_str());
+  messages::end_progress_line();
+  messages::progress_line(str(label_, ": ", total_, " frames in ", format_duration(elapsed), note.empty() ? "" : "  ", note),
+                          false);
 }
 
-void Progress::message(const std::string& line) {
+void Progress::note(const std::string& line) {
   if (quiet_) return;
-  if (open_line_) std::fputc('\n', stderr), open_line_ = false;
-  std::fprintf(stderr, "%s\n", line.c_str());
+  messages::note(line);
   since_line_.restart();
 }
 

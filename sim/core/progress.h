@@ -2,7 +2,7 @@
 // Progress of a long run on stderr: "simulate: frame 12/240  3.1 frames/s  eta 1m13s". On a terminal
 // one line is rewritten in place; otherwise (farms, logs) each update (one per frame) is its own line
 // "LABEL: frame DONE/TOTAL  R frames/s  eta T  NOTE", so other programs can parse it. Quiet
-// reporters print nothing.
+// reporters print nothing; nor does any under --quiet (core/messages.h).
 //
 // Items that take minutes (a frame of a big fluid) report from inside with `partial`:
 // "LABEL: frame DONE+1/TOTAL in progress  NOTE", at most once a second on a terminal and once every
@@ -25,13 +25,14 @@ class Progress {
   // Whether partial(...) would print now (build an expensive note only then).
   bool partial_due() const;
   void finish(const std::string& note = "");
-  // A line that must be seen even between progress updates (warnings), unless quiet.
-  void message(const std::string& line);
+  // A routine line between progress updates, unless quiet (messages::note). Warnings go to
+  // messages::warning, which no quiet silences.
+  void note(const std::string& line);
 
  private:
   std::string label_;
   size_t total_;
-  bool quiet_, terminal_, open_line_ = false;
+  bool quiet_, terminal_;
   double partial_interval_;
   Stopwatch since_start_, since_line_;
   void print(const std::string& line);

@@ -328,7 +328,7 @@ FluidSurvey survey_fluid_files(const std::string& pattern, const std::vector<int
 
   // Frames are independent: read them in parallel, each written by its own task.
   Progress progress("survey fluid", todo.size(), quiet || todo.size() < 8);
-  progress.message(str("surveying ", todo.size(), " fluid frames (bounds for the domain and camera)"));
+  progress.note(str("surveying ", todo.size(), " fluid frames (bounds for the domain and camera)"));
   std::vector<std::string> errors(todo.size());
   parallel_for(todo.size(), 1, [&](size_t b, size_t e) {
     for (size_t t = b; t < e; ++t) {

@@ -1,10 +1,12 @@
 #include "sim/io/stage_record.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 
 #include "sim/core/atomic_file.h"
 #include "sim/core/error.h"
+#include "sim/core/messages.h"
 
 namespace spume {
 namespace {
@@ -30,8 +32,10 @@ Json StageRecord::to_json() const {
   Json frames = Json::object(), others = Json::object();
   for (const auto& [frame, id] : frame_inputs) frames[std::to_string(frame)] = identity_json(id);
   for (const auto& [name, id] : other_inputs) others[name] = identity_json(id);
-  return {{"stage", stage}, {"keys", keys},       {"first_frame", first_frame}, {"last_frame", last_frame},
-          {"frame_inputs", frames}, {"other_inputs", others}};
+  Json j = {{"stage", stage}, {"keys", keys},       {"first_frame", first_frame}, {"last_frame", last_frame},
+            {"frame_inputs", frames}, {"other_inputs", others}};
+  if (!warnings.empty()) j["warnings"] = warnings;
+  return j;
 }
 
 StageRecord StageRecord::from_json(const Json& j) {
@@ -43,6 +47,7 @@ StageRecord StageRecord::from_json(const Json& j) {
     r.last_frame = j.at("last_frame").get<int>();
     for (const auto& [frame, id] : j.at("frame_inputs").items()) r.frame_inputs[std::stoi(frame)] = identity_from(id);
     for (const auto& [name, id] : j.at("other_inputs").items()) r.other_inputs[name] = identity_from(id);
+    if (j.contains("warnings")) r.warnings = j.at("warnings").get<std::vector<std::string>>();
     return r;
   } catch (const std::exception& e) {
     fail("malformed stage record: ", e.what());
@@ -119,6 +124,18 @@ void remove_stage_record(const std::filesystem::path& dir) {
     fail(record_path(dir).string(), ": cannot remove the stale record: ", ec.message());
   // Records of earlier spume versions would otherwise be mistaken for finished folders by them.
   std::filesystem::remove(dir / "fingerprint.json", ec);
+}
+
+void repeat_warnings(const std::optional<StageRecord>& record) {
+  if (record)
+    for (const std::string& w : record->warnings) messages::warning(w);
+}
+
+std::vector<std::string> merged_warnings(const std::vector<std::string>& earlier, const std::vector<std::string>& later) {
+  std::vector<std::string> all = earlier;
+  for (const std::string& w : later)
+    if (std::find(all.begin(), all.end(), w) == all.end()) all.push_back(w);
+  return all;
 }
 
 }  // namespace spume

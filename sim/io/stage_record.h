@@ -12,6 +12,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -25,6 +26,9 @@ struct StageRecord {
   int first_frame = 0, last_frame = -1;      // inclusive range made (last < first: none yet)
   std::map<int, FileIdentity> frame_inputs;  // the input file each made frame was computed from
   std::map<std::string, FileIdentity> other_inputs;  // files read for the whole sequence, by name
+  // The warnings given while these outputs were made (core/messages.h), said again whenever they are
+  // reused; not part of what makes outputs current.
+  std::vector<std::string> warnings;
 
   nlohmann::json to_json() const;
   static StageRecord from_json(const nlohmann::json& j);  // throws Error on a malformed record
@@ -49,6 +53,10 @@ std::string record_digest(const nlohmann::json& j);
 std::optional<StageRecord> read_stage_record(const std::filesystem::path& dir);
 // Written atomically, once the folder's frames are on disk.
 void write_stage_record(const std::filesystem::path& dir, const StageRecord& record);
+// Says a reused record's warnings again (messages::warning; those already given are not repeated).
+void repeat_warnings(const std::optional<StageRecord>& record);
+// `earlier`'s warnings followed by those of `later` not among them.
+std::vector<std::string> merged_warnings(const std::vector<std::string>& earlier, const std::vector<std::string>& later);
 // Before a stage starts writing into `dir`: its record goes, so an interrupted run is never taken
 // for a finished one.
 void remove_stage_record(const std::filesystem::path& dir);

@@ -9,6 +9,7 @@
 #include "sim/pipeline/cache_state.h"
 #include "sim/core/atomic_file.h"
 #include "sim/core/error.h"
+#include "sim/core/messages.h"
 #include "sim/core/progress.h"
 #include "sim/core/stopwatch.h"
 #include "sim/fluid/solver.h"
@@ -92,6 +93,7 @@ FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions
   const bool has_bodies = scene.solids.any_dynamic();
   const RecordMatch match = fluid_caches_match(scene, options.out_root, last);
   if (!options.force && match.kind == RecordMatch::Kind::Current) {
+    repeat_warnings(read_stage_record(dir));
     summary.reused = true;
     summary.frames = last + 1;
     return summary;
@@ -125,11 +127,11 @@ FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions
 
   Progress progress("fluid " + scene.name, size_t(summary.frames), options.quiet, options.partial_progress_interval);
   if (resume)
-    progress.message(str("fluid: continuing from frame ", resume->last_frame, " (", summary.why, "; solver state ",
+    progress.note(str("fluid: continuing from frame ", resume->last_frame, " (", summary.why, "; solver state ",
                          fluid_restart_path(out, resume->last_frame).string(), "): frames ", first, "-", last));
   else if (match.kind == RecordMatch::Kind::Prefix && !options.force)
-    progress.message(str("fluid: re-solving from t = 0 (", match.why, "): cannot continue: ", restart_why));
-  progress.message(str(solver.size(), " fluid particles, ", solver.stats().boundary_particles,
+    progress.note(str("fluid: re-solving from t = 0 (", match.why, "): cannot continue: ", restart_why));
+  progress.note(str(solver.size(), " fluid particles, ", solver.stats().boundary_particles,
                        " boundary particles, frames ", first, "-", last, " at ", scene.fluid.fps, " fps (",
                        summary.why, ")"));
   std::string stats = resume ? resume->stats : std::string(kSolverStatsHeader) + "\n";
@@ -168,7 +170,9 @@ FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions
     write_restart_state(fluid_restart_path(out, last), state);
   }
   write_file_atomically(dir / "solver_stats.csv", [&](std::ostream& o) { o << stats; });
-  write_stage_record(dir, fluid_stage_record(scene, last));
+  StageRecord made = fluid_stage_record(scene, last);
+  made.warnings = messages::warnings();
+  write_stage_record(dir, made);
   remove_fluid_restarts(out, last);
   summary.seconds = start.seconds();
   const SolverStats s = solver.stats();

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "sim/core/error.h"
+#include "sim/core/messages.h"
 #include "sim/io/frame_pattern.h"
 #include "sim/pipeline/fluid_stage.h"
 #include "sim/scene/container.h"
@@ -129,8 +130,10 @@ SceneInputs read_scene_inputs(const SimScene& scene, const std::filesystem::path
                                       " frames grown by their size on every side"),
                            "; set domain.min and domain.max to change it"));
   }
-  if (!quiet)
-    for (const std::string& note : in.notes) std::fprintf(stderr, "%s\n", note.c_str());
+  // Warnings whatever `quiet` says (messages.h): a farm job runs quiet.
+  for (const std::string& note : in.notes)
+    if (messages::is_warning(note)) messages::warning(note);
+    else if (!quiet) messages::note(note);
   return in;
 }
 

@@ -21,7 +21,8 @@ struct SceneInputs {
 };
 
 // The fluid frames of the scene (its files, or the solver's caches under out_root, which must
-// exist), surveyed. Writes the notes to stderr unless quiet. Fluid files too sparse for the radius
+// exist), surveyed. Writes the notes to stderr unless quiet, and the warnings among them always
+// (core/messages.h). Fluid files too sparse for the radius
 // are an error (check_particle_spacing).
 SceneInputs read_scene_inputs(const SimScene& scene, const std::filesystem::path& out_root, bool quiet);
 

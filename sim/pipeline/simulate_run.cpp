@@ -14,6 +14,7 @@
 #include "sim/core/huge_pages.h"
 #include "sim/core/atomic_file.h"
 #include "sim/core/error.h"
+#include "sim/core/messages.h"
 #include "sim/core/progress.h"
 #include "sim/core/stopwatch.h"
 #include "sim/diffuse/simulator.h"
@@ -180,6 +181,7 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
   const StageRecord wanted = diffuse_stage_record(scene, inputs, frames, summary.out_dir);
   const RecordMatch match = diffuse_caches_match(scene, inputs, frames, summary.out_dir);
   if (!options.force && match.kind == RecordMatch::Kind::Current) {
+    repeat_warnings(read_stage_record(cache_dir));
     summary.reused = true;
     summary.frames = int(frames.size());
     return summary;
@@ -187,8 +189,10 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
   // A current prefix (an earlier, shorter range of the same sequence) is continued from its last
   // frame: the diffuse cache of a frame is the whole state the simulator carries to the next.
   size_t resume = 0;
+  std::optional<StageRecord> earlier;  // the record of the prefix continued from, for its warnings
   if (!options.force && match.kind == RecordMatch::Kind::Prefix) {
-    const int made_last = read_stage_record(cache_dir)->last_frame;
+    earlier = read_stage_record(cache_dir);
+    const int made_last = earlier->last_frame;
     resume = size_t(std::find(frames.begin(), frames.end(), made_last) - frames.begin());
     if (resume >= frames.size()) resume = 0;
   }
@@ -214,11 +218,11 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
 
   Progress progress("simulate " + scene.name, frames.size() - resume, options.quiet);
   if (resume > 0)
-    progress.message(str("diffuse: continuing from frame ", frames[resume], " (", match.why, ")"));
+    progress.note(str("diffuse: continuing from frame ", frames[resume], " (", match.why, ")"));
   else if (!resume_note.empty())
-    progress.message(resume_note);
+    progress.note(resume_note);
   else if (!options.quiet && match.kind == RecordMatch::Kind::Stale && !options.force)
-    progress.message(str("diffuse: simulating (", match.why, ")"));
+    progress.note(str("diffuse: simulating (", match.why, ")"));
   FluidFrame current =
       with_context(str("frame ", frames[resume]), [&] { return source.load(frames[resume]); });
 
@@ -272,13 +276,13 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
         write_bgeo(diffuse_bgeo_path(summary.out_dir, particles.index), particles);
       io_ms = t0.milliseconds();
       if (stats.dropped > 0 && !warned_budget) {
-        progress.message(str("warning: the emission budget diffuse.max_particles = ", *scene.diffuse.max_particles,
+        messages::warning(str("the emission budget diffuse.max_particles = ", *scene.diffuse.max_particles,
                              " binds from frame ", particles.index,
                              ": emission is thinned uniformly at random (unbiased in space); see stats.csv 'dropped'"));
         warned_budget = true;
       }
       if (stats.capped > 0 && !warned_cap) {
-        progress.message(str("warning: from frame ", particles.index, " Eq. 8 asks some fluid particles for more than ",
+        messages::warning(str("from frame ", particles.index, " Eq. 8 asks some fluid particles for more than ",
                              kMaxSamplesPerStep, " new diffuse particles in one step, the most a diffuse id can "
                              "number; ", stats.capped, " were not emitted in this frame (stats.csv 'capped' counts "
                              "every frame). More diffuse.substeps or lower diffuse.k_ta / diffuse.k_wc avoid it"));
@@ -291,20 +295,20 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
     if (stats.interior.narrow_band) {
       most_filled = std::max(most_filled, stats.interior.filled);
       if (++band_frames == 1)
-        progress.message(str("frame ", stats.frame, ": the fluid particles enclose an empty interior of ",
+        progress.note(str("frame ", stats.frame, ": the fluid particles enclose an empty interior of ",
                              stats.interior.enclosed_cells, " cells of h beside ", stats.interior.occupied_cells,
                              " occupied (a narrow-band cache: FLIP keeps particles only near the surface); filled with ",
                              stats.interior.filled, " massless particles for classification and advection "
                              "(MODEL.md §9.1; fluid.narrow_band = off leaves it empty)"));
     }
     if (stats.interior.skipped && !warned_band_skip) {
-      progress.message(str("note: frame ", stats.frame, "'s particles spread over more than 16M cells of h; "
+      progress.note(str("note: frame ", stats.frame, "'s particles spread over more than 16M cells of h; "
                            "such frames are not tested for an empty interior (MODEL.md §9.1)"));
       warned_band_skip = true;
     }
     if (scene.flip_particles) {
       if (k == resume)
-        progress.message(str("fluid.particles = flip: velocities averaged over ", kVelocitySmoothing, " h for the "
+        progress.note(str("fluid.particles = flip: velocities averaged over ", kVelocitySmoothing, " h for the "
                              "potentials; frame ", stats.frame, " holds ", stats.full_count, " particles in a full "
                              "neighbourhood (", stats.density_ratio, "x the nominal ",
                              4.0 / 3.0 * std::numbers::pi *
@@ -315,7 +319,7 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
       most_density = std::max(most_density, stats.density_ratio);
     }
     if (!stats.unpaired_because.empty() && ++unpaired_frames == 1)
-      progress.message(str("warning: the fluid frames carry no particle ids, and from frame ", stats.frame, " to ",
+      messages::warning(str("the fluid frames carry no particle ids, and from frame ", stats.frame, " to ",
                            frames[k + 1], " ", stats.unpaired_because, ": particles are not paired by index there; ",
                            current.has_velocities() ? "each moves with its stored velocity between frames"
                                                     : "without stored velocities they stand still between frames, "
@@ -323,11 +327,12 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
                            " (MODEL.md §8.16; a cache with an id attribute avoids it)"));
     if (stats.generated > 0 && stats.removed * 100 > stats.generated) {
       if (++domain_warnings <= 3)
-        progress.message(str("warning: frame ", stats.frame, " removed ", stats.removed, " diffuse particles outside the "
+        messages::warning(str("frame ", stats.frame, " removed ", stats.removed, " diffuse particles outside the "
                              "domain, ", 100.0 * double(stats.removed) / double(stats.generated),
                              "% of the ", stats.generated, " emitted; if the flow reaches beyond the domain, widen "
                              "domain.min / domain.max"));
-      if (domain_warnings == 3) progress.message("  (more frames like this are counted in stats.csv, column removed)");
+      if (domain_warnings == 3)
+        messages::warning("more frames may lose diffuse particles to the domain: stats.csv counts them, column removed");
     }
     if (!(k == resume && resume > 0)) {
       std::ostringstream row;
@@ -342,18 +347,21 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
     if (next) current = std::move(*next);
   }
   if (band_frames > 0)
-    progress.message(str("  (", band_frames, " of ", frames.size() - resume, " frames were a narrow band, filled "
+    progress.note(str("  (", band_frames, " of ", frames.size() - resume, " frames were a narrow band, filled "
                          "with up to ", most_filled, " particles)"));
   if (scene.flip_particles)
-    progress.message(str("  (fluid.particles = flip: particle density ", least_density, " to ", most_density,
+    progress.note(str("  (fluid.particles = flip: particle density ", least_density, " to ", most_density,
                          "x the nominal over the frames)"));
   if (unpaired_frames > 1)
-    progress.message(str("  (", unpaired_frames, " of ", frames.size() - 1 - resume,
-                         " frame intervals left their particles unpaired)"));
+    messages::warning(str(unpaired_frames, " of ", frames.size() - 1 - resume,
+                          " frame intervals left their particles unpaired (fluid frames without ids)"));
   writer.wait();  // every frame's cache on disk before the stage is marked finished
   write_file_atomically(summary.out_dir / "stats.csv", [&](std::ostream& out) { out << stats_text; });
   remove_diffuse_restarts(summary.out_dir, frames.back());
-  write_stage_record(cache_dir, wanted);
+  StageRecord made = wanted;
+  made.warnings = messages::warnings();
+  if (resume > 0 && earlier) made.warnings = merged_warnings(earlier->warnings, made.warnings);
+  write_stage_record(cache_dir, made);
   summary.seconds = start.seconds();
   progress.finish(str("max ", summary.max_diffuse, " diffuse particles -> ", summary.out_dir.string()));
   return summary;

@@ -130,7 +130,7 @@ VdbExportSummary export_diffuse_vdb(const SimScene& scene, const std::vector<int
   const float voxel = vdb_points_voxel_size(scene.fluid.particle_radius);
   Progress progress("vdb " + scene.name, plan.write.size(), quiet);
   if (!plan.write.empty())
-    progress.message(str("diffuse_vdb: writing ", plan.write.size(), " of ", frames.size(), " frames (", plan.why, ")"));
+    progress.note(str("diffuse_vdb: writing ", plan.write.size(), " of ", frames.size(), " frames (", plan.why, ")"));
   for (size_t k = 0; k < plan.write.size(); ++k) {
     const int f = plan.write[k];
     const DiffuseFrame frame = read_diffuse_cache(diffuse_cache_path(scene_out, f));
@@ -144,7 +144,7 @@ VdbExportSummary export_diffuse_vdb(const SimScene& scene, const std::vector<int
     ++summary.removed;
   }
   if (summary.removed > 0)
-    progress.message(str("diffuse_vdb: removed ", summary.removed, " .vdb files (", plan.why, ")"));
+    progress.note(str("diffuse_vdb: removed ", summary.removed, " .vdb files (", plan.why, ")"));
   if (plan.wanted) write_stage_record(dir, *plan.wanted);
   std::error_code ec;
   if (!scene.write_vdb) fs::remove(dir, ec);  // only when empty: anything else in it is not spume's

@@ -51,6 +51,11 @@ struct OptionSpec {
   bool takes_value() const { return !value.empty(); }
 };
 
+// --quiet, alike on every command (sim/core/messages.h says what it hides).
+inline OptionSpec quiet_option() {
+  return {"quiet", "", "no progress and no notes on stderr; warnings and errors are always printed"};
+}
+
 struct ParsedArgs {
   std::vector<std::string> raw;  // as typed, for records of the command (report.md)
   std::vector<std::string> positional;

@@ -213,6 +213,22 @@ bool natural_less(const std::string& a, const std::string& b) {
   return a.size() - i < b.size() - j;
 }
 
+namespace {
+
+// Whether every frame on both sides is one file (a folder compared with itself, by two names).
+bool same_files_on_both_sides(const FrameSet& set) {
+  bool any = false;
+  for (const FramePair& f : set.frames) {
+    if (!f.has_reference || !f.has_candidate) return false;
+    std::error_code ec;
+    if (!fs::equivalent(f.reference, f.candidate, ec) || ec) return false;
+    any = true;
+  }
+  return any;
+}
+
+}  // namespace
+
 FrameSet resolve_frames(const std::string& reference, const std::string& candidate,
                         const std::optional<std::string>& frames_spec) {
   const Side ref = classify("REFERENCE", reference), cand = classify("NEW", candidate);
@@ -231,6 +247,9 @@ FrameSet resolve_frames(const std::string& reference, const std::string& candida
     set = resolve_patterns(ref, cand, frames_spec);
   }
   assign_stems(&set.frames);
+  if (same_files_on_both_sides(set))
+    set.notes.push_back(str("warning: REFERENCE ", set.reference_source, " and NEW ", set.candidate_source,
+                            " are the same files: every frame passes, and nothing new is compared"));
   return set;
 }
 

@@ -28,7 +28,7 @@ struct FrameSet {
   enum class Mode { files, folders, patterns } mode = Mode::files;
   std::string reference_source, candidate_source;  // the file, folder or pattern each side resolved to
   std::vector<FramePair> frames;                   // by number, else by name with digit runs compared as numbers
-  std::vector<std::string> notes;                  // how an argument was read, when not as typed
+  std::vector<std::string> notes;  // how an argument was read, when not as typed; "warning: ..." lines
 };
 
 // `frames_spec` (the frame-spec grammar) selects numbered frames. With patterns, a selected frame in

@@ -58,7 +58,7 @@ std::vector<cli::OptionSpec> scene_command_options() {
       {"out", "DIR", "output root (default out/); results go to DIR/<scene name>/"},
       {"threads", "N", "worker threads (default: one per core); results do not depend on it"},
       {"set", "KEY=VALUE", "override a scene key by its path, e.g. --set diffuse.k_ta=2000", true},
-      {"quiet", "", "no progress on stderr"},
+      cli::quiet_option(),
       {"fluid", "PATTERN", "fluid files with every default, no scene file (e.g. 'cache/ParticleData_Fluid_%d.bgeo')"},
       {"radius", "R", "with --fluid: the fluid particle radius in m"},
       {"fps", "F", "with --fluid: frames per second of the fluid files (default: fluid.fps's)"},

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "sim/core/error.h"
+#include "sim/core/messages.h"
 #include "sim/io/cache_layout.h"
 #include "sim/pipeline/body_track_file.h"
 #include "sim/pipeline/fluid_stage.h"
@@ -38,10 +39,9 @@ SceneRender scene_render(const SimScene& scene, const std::filesystem::path& out
   return r;
 }
 
-void print_input_warnings(const SceneRender& render, bool quiet) {
-  if (quiet) return;
+void print_input_warnings(const SceneRender& render) {
   for (const std::string& note : render.inputs.notes)
-    if (note.rfind("warning:", 0) == 0) std::fprintf(stderr, "%s\n", note.c_str());
+    if (messages::is_warning(note)) messages::warning(note);
 }
 
 void check_diffuse_caches(const SimScene& scene, const SceneRender& render, const RenderSettings& settings,
@@ -66,6 +66,7 @@ void check_diffuse_caches(const SimScene& scene, const SceneRender& render, cons
   if (match.kind == RecordMatch::Kind::Stale)
     fail(dir.string(), ": the diffuse caches are not current for this scene: ", match.why,
          "; run `spume simulate` (or `spume run`) first");
+  repeat_warnings(made);
 }
 
 }  // namespace spume

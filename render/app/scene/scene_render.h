@@ -21,11 +21,12 @@ struct SceneRender {
 SceneRender scene_render(const SimScene& scene, const std::filesystem::path& out_root);
 
 // Prints the warnings among the inputs' notes (a radius that does not fit the particles' spacing) to
-// stderr unless quiet: a render drawn from doubtful inputs says so, as the simulation did.
-void print_input_warnings(const SceneRender& render, bool quiet);
+// stderr, even under --quiet: a render drawn from doubtful inputs says so, as the simulation did.
+void print_input_warnings(const SceneRender& render);
 
 // Throws unless the diffuse caches (when the settings draw diffuse material) are finished, current
-// for the scene and hold `frames` (sorted), naming the first difference.
+// for the scene and hold `frames` (sorted), naming the first difference. Says the warnings given
+// while the caches were made again: they hold for the pictures drawn from them.
 void check_diffuse_caches(const SimScene& scene, const SceneRender& render, const RenderSettings& settings,
                           const std::vector<int>& frames);
 
