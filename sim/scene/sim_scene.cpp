@@ -4,6 +4,7 @@
 #include "sim/io/fluid_import.h"
 #include "sim/io/frame_pattern.h"
 #include "sim/scene/diffuse_params_reader.h"
+#include "sim/scene/scene_name.h"
 #include "sim/keys/scene_keys.h"
 #include "sim/scene/solids_reader.h"
 
@@ -19,7 +20,22 @@ Json with_generation(Json keys) {
   return keys;
 }
 
-bool is_name_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'; }
+// The scene's name: the key's, which must be usable as it is, or the one derived from the scene
+// file's (or the fluid files') name, made usable and said so in `notes`.
+std::string read_scene_name(const ParamReader& root, const std::string& default_name, std::vector<std::string>& notes) {
+  const std::string given = root.text(keys::scene::name.name(), default_name);
+  if (is_usable_scene_name(given)) return given;
+  const std::string usable = usable_scene_name(given);
+  const std::string allowed = "is not a usable folder name (letters, digits, _ - . only)";
+  if (root.has(keys::scene::name.name()))
+    root.fail_at("name", str("\"", given, "\" ", allowed, usable.empty() ? "" : str("; e.g. \"", usable, "\"")));
+  if (usable.empty())
+    root.fail_at("name", str("\"", given, "\", taken from the file name, ", allowed,
+                             "; give the scene a name with the key name (or --set name=NAME)"));
+  notes.push_back(str("scene name: ", usable, ", the folder of its results (taken from the file name \"", given,
+                      "\", which ", allowed, "); the key name (or --set name=NAME) gives another"));
+  return usable;
+}
 
 }  // namespace
 
@@ -27,9 +43,7 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
                         const std::string& default_name) {
   namespace k = keys;
   SimScene scene;
-  scene.name = root.text(k::scene::name.name(), default_name);
-  if (scene.name.empty() || !std::all_of(scene.name.begin(), scene.name.end(), is_name_char) || scene.name[0] == '.')
-    root.fail_at("name", str("\"", scene.name, "\" is not a usable folder name; use letters, digits, _ - ."));
+  scene.name = read_scene_name(root, default_name, scene.import_notes);
   scene.gravity = root.vec3(k::scene::gravity);
 
   const ParamReader fluid = root.child("fluid");
@@ -64,7 +78,7 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
                                                     scene.fluid.fps);
     scene.read = import.read;
     scene.velocity_scale = import.velocity_scale;
-    scene.import_notes = import.notes;
+    scene.import_notes.insert(scene.import_notes.end(), import.notes.begin(), import.notes.end());
     if (particles == "auto" && import.mantaflow) {
       scene.flip_particles = true;
       scene.import_notes.push_back("particles: flip (fluid.particles \"auto\": Mantaflow's particles are FLIP "
