@@ -120,6 +120,8 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
   if (fluid_keys.is_object()) {
     fluid_keys.erase("frames");
     fluid_keys["particles"] = scene.flip_particles ? "flip" : "sph";  // what "auto" decided, not the word
+    // The files by what they are, not by how the path was typed (relative, absolute, $F4 or %04d).
+    if (scene.source == FluidSourceKind::Files) fluid_keys["files"] = canonical_frame_pattern(scene.file_pattern);
   }
   Json keys = {{"gravity", root.effective("gravity")}, {"fluid", fluid_keys}, {"solids", root.effective("solids")}};
   // What "auto" and a Mantaflow config decided shapes the frames as much as the keys do.
