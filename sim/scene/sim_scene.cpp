@@ -3,6 +3,7 @@
 #include "sim/core/error.h"
 #include "sim/io/fluid_import.h"
 #include "sim/io/frame_pattern.h"
+#include "sim/io/io_bytes.h"
 #include "sim/scene/diffuse_params_reader.h"
 #include "sim/scene/scene_name.h"
 #include "sim/keys/scene_keys.h"
@@ -35,6 +36,11 @@ std::string read_scene_name(const ParamReader& root, const std::string& default_
   notes.push_back(str("scene name: ", usable, ", the folder of its results (taken from the file name \"", given,
                       "\", which ", allowed, "); the key name (or --set name=NAME) gives another"));
   return usable;
+}
+
+// fluid.vdb_grid means something only to OpenVDB files.
+bool reads_vdb_grids(const std::string& file_pattern) {
+  return io::ends_with(io::lower_file_name(std::filesystem::path(file_pattern)), ".vdb");
 }
 
 }  // namespace
@@ -77,6 +83,13 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
                                                     fluid.text(k::fluid::vdb_grid.name(), ""), given_scale,
                                                     scene.fluid.fps);
     scene.read = import.read;
+    if (!reads_vdb_grids(scene.file_pattern)) {
+      if (fluid.has(k::fluid::vdb_grid.name()))
+        scene.import_notes.push_back(str("warning: fluid.vdb_grid \"", scene.read.vdb_grid, "\" does not apply to ",
+                                         std::filesystem::path(scene.file_pattern).filename().string(),
+                                         " (it picks a point grid of an OpenVDB .vdb cache): ignored"));
+      scene.read.vdb_grid.clear();
+    }
     scene.velocity_scale = import.velocity_scale;
     scene.import_notes.insert(scene.import_notes.end(), import.notes.begin(), import.notes.end());
     if (particles == "auto" && import.mantaflow) {
@@ -120,8 +133,11 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
   if (fluid_keys.is_object()) {
     fluid_keys.erase("frames");
     fluid_keys["particles"] = scene.flip_particles ? "flip" : "sph";  // what "auto" decided, not the word
-    // The files by what they are, not by how the path was typed (relative, absolute, $F4 or %04d).
-    if (scene.source == FluidSourceKind::Files) fluid_keys["files"] = canonical_frame_pattern(scene.file_pattern);
+    if (scene.source == FluidSourceKind::Files) {
+      // The files by what they are, not by how the path was typed (relative, absolute, $F4 or %04d).
+      fluid_keys["files"] = canonical_frame_pattern(scene.file_pattern);
+      if (!reads_vdb_grids(scene.file_pattern)) fluid_keys.erase("vdb_grid");  // ignored: no change of input
+    }
   }
   Json keys = {{"gravity", root.effective("gravity")}, {"fluid", fluid_keys}, {"solids", root.effective("solids")}};
   // What "auto" and a Mantaflow config decided shapes the frames as much as the keys do.
