@@ -6,6 +6,7 @@
 #include "sim/core/error.h"
 #include "sim/core/frame_order.h"
 #include "sim/io/frame_pattern.h"
+#include "sim/io/frame_pattern_hint.h"
 #include "sim/io/particle_file.h"
 
 namespace spume {
@@ -64,7 +65,7 @@ class FileSequenceSource final : public FluidSource {
     if (!is_frame_pattern(pattern_))
       fail(pattern_, ": a fluid file pattern needs one frame placeholder (%d, %04d, #### or $F, $F4)");
     files_ = find_pattern_frames(pattern_);
-    if (files_.empty()) fail(pattern_, ": no files match this pattern");
+    if (files_.empty()) fail(pattern_, ": no files match this pattern", unmatched_pattern_hint(pattern_));
     frames_ = files_;
     if (allow_gaps_)
       for (int f = files_.front(); f <= files_.back(); ++f) frames_.push_back(f);

@@ -291,8 +291,9 @@ FluidSurvey survey_fluid_files(const std::string& pattern, const std::vector<int
   survey.pattern = pattern;
   survey.read = read;
   survey.frames.resize(frames.size());
-  // A survey kept under other read options measured other coordinates: it is not this one.
-  const std::string kept_as = pattern + (read.up == UpAxis::Y ? "" : str(" (", up_axis_name(read.up), "-up)")) +
+  // A survey kept under other read options measured other coordinates: it is not this one. The same
+  // files typed another way (relative, absolute, $F4 for %04d) are the same survey.
+  const std::string kept_as = canonical_frame_pattern(pattern) + (read.up == UpAxis::Y ? "" : str(" (", up_axis_name(read.up), "-up)")) +
                               (read.vdb_grid.empty() ? "" : str(" (grid ", read.vdb_grid, ")"));
   const Kept kept = read_kept(keep, kept_as);
   if (kept.rejected > 0)

@@ -11,22 +11,19 @@
 namespace spume {
 namespace {
 
-// A pattern split around its single placeholder, with "%%" already turned into '%'.
-struct ParsedPattern {
-  std::string prefix, suffix;
-  int width = 0;  // minimum digits; 0 or 1 means no padding
-};
+using ParsedPattern = FramePatternParts;
 
 // Scans the pattern. With strict = false it only counts placeholders and never throws.
 int scan(const std::string& pattern, bool strict, ParsedPattern* out) {
   int placeholders = 0;
   std::string literal;
-  auto placeholder = [&](int width) {
+  auto placeholder = [&](int width, PlaceholderStyle style) {
     if (++placeholders == 2 && strict)
       fail("frame pattern '", pattern, "': more than one frame placeholder; exactly one of %d, %0Nd, #### or $F/$FN allowed");
     if (out) {
       out->prefix = literal;
-      out->width = width;
+      out->width = width <= 1 ? 0 : width;
+      out->style = style;
     }
     literal.clear();
   };
@@ -39,12 +36,12 @@ int scan(const std::string& pattern, bool strict, ParsedPattern* out) {
       const bool digit = j < pattern.size() && pattern[j] >= '1' && pattern[j] <= '9';
       const bool word = j < pattern.size() && (std::isalnum(static_cast<unsigned char>(pattern[j])) || pattern[j] == '_');
       if (digit) {
-        placeholder(pattern[j] - '0');
+        placeholder(pattern[j] - '0', PlaceholderStyle::Houdini);
         i = j + 1;
         continue;
       }
       if (!word) {
-        placeholder(0);
+        placeholder(0, PlaceholderStyle::Houdini);
         i = j;
         continue;
       }
@@ -52,7 +49,7 @@ int scan(const std::string& pattern, bool strict, ParsedPattern* out) {
     if (c == '#') {
       size_t j = i;
       while (j < pattern.size() && pattern[j] == '#') ++j;
-      placeholder(int(j - i));
+      placeholder(int(j - i), PlaceholderStyle::Hashes);
       i = j;
     } else if (c == '%') {
       if (i + 1 < pattern.size() && pattern[i + 1] == '%') {
@@ -61,7 +58,7 @@ int scan(const std::string& pattern, bool strict, ParsedPattern* out) {
         continue;
       }
       if (i + 1 < pattern.size() && pattern[i + 1] == 'd') {
-        placeholder(0);
+        placeholder(0, PlaceholderStyle::Printf);
         i += 2;
         continue;
       }
@@ -79,7 +76,7 @@ int scan(const std::string& pattern, bool strict, ParsedPattern* out) {
         fail("frame pattern '", pattern, "': unsupported sequence '", pattern.substr(i, std::min(j + 1, pattern.size()) - i),
              "' at position ", i, "; allowed %d, %0Nd (N = 1..20), a run of '#', or %% for a literal '%'");
       }
-      placeholder(width);
+      placeholder(width, PlaceholderStyle::Printf);
       i = j + 1;
     } else {
       literal += c;
@@ -99,6 +96,66 @@ std::string format_number(int frame, int width) {
 }
 
 }  // namespace
+
+FramePatternParts parse_frame_pattern(const std::string& pattern) {
+  ParsedPattern p;
+  scan(pattern, true, &p);
+  return p;
+}
+
+std::string compose_frame_pattern(const FramePatternParts& parts) {
+  const int width = parts.width <= 1 ? 0 : parts.width;
+  auto compose = [&](PlaceholderStyle style) -> std::string {
+    auto escaped = [&](const std::string& text) {
+      if (style != PlaceholderStyle::Printf) return text;
+      std::string out;
+      for (char c : text) out += c == '%' ? std::string("%%") : std::string(1, c);
+      return out;
+    };
+    std::string placeholder;
+    switch (style) {
+      case PlaceholderStyle::Printf:
+        if (width > 20) return "";
+        placeholder = width == 0 ? "%d" : str("%0", width, "d");
+        break;
+      case PlaceholderStyle::Hashes: placeholder = std::string(size_t(std::max(width, 1)), '#'); break;
+      case PlaceholderStyle::Houdini:
+        if (width > 9) return "";
+        placeholder = width == 0 ? "$F" : str("$F", width);
+        break;
+    }
+    std::string text = escaped(parts.prefix) + placeholder + escaped(parts.suffix);
+    // Only a pattern that reads back as these parts: the text may hold a '#' or a "$F" of its own.
+    ParsedPattern back;
+    try {
+      scan(text, true, &back);
+    } catch (const Error&) {
+      return "";
+    }
+    return back.prefix == parts.prefix && back.suffix == parts.suffix && back.width == width ? text : "";
+  };
+  std::string text = compose(parts.style);
+  return text.empty() && parts.style != PlaceholderStyle::Printf ? compose(PlaceholderStyle::Printf) : text;
+}
+
+std::string canonical_frame_pattern(const std::string& pattern) {
+  namespace fs = std::filesystem;
+  const fs::path full(pattern);
+  FramePatternParts parts;
+  try {
+    parts = parse_frame_pattern(full.filename().string());
+  } catch (const Error&) {
+    return pattern;
+  }
+  parts.style = PlaceholderStyle::Printf;
+  const std::string name = compose_frame_pattern(parts);
+  if (name.empty()) return pattern;
+  std::error_code ec;
+  const fs::path dir = full.has_parent_path() ? full.parent_path() : fs::path(".");
+  fs::path folder = fs::weakly_canonical(dir, ec);
+  if (ec) folder = fs::absolute(dir, ec).lexically_normal();
+  return (folder / name).string();
+}
 
 bool is_frame_pattern(const std::string& pattern) { return scan(pattern, false, nullptr) > 0; }
 

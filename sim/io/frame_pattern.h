@@ -11,6 +11,29 @@
 
 namespace spume {
 
+// How a pattern writes its placeholder: %d / %0Nd, a run of '#', or Houdini's $F / $FN.
+enum class PlaceholderStyle { Printf, Hashes, Houdini };
+
+// A pattern split around its single placeholder ("%%" already turned into '%').
+struct FramePatternParts {
+  std::string prefix, suffix;
+  int width = 0;  // minimum digits; 0 means no padding (a width of 1 is reported as 0: the same names)
+  PlaceholderStyle style = PlaceholderStyle::Printf;
+};
+
+// Throws Error for a malformed pattern, as expand_frame_pattern does.
+FramePatternParts parse_frame_pattern(const std::string& pattern);
+
+// The pattern of `parts` written in `parts.style` when that style can say it (Houdini's $FN stops at
+// 9 digits; a '#' or "$F" in the text would read as a second placeholder), else in printf style;
+// "" when no style can ('#' or "$F" in the text). Parsing the result gives `parts` back.
+std::string compose_frame_pattern(const FramePatternParts& parts);
+
+// The same files however the pattern was typed, for comparing inputs: the folder made absolute with
+// symbolic links resolved, the placeholder in printf style (%d, %0Nd). A malformed pattern comes back
+// as it is (reading the files says what is wrong).
+std::string canonical_frame_pattern(const std::string& pattern);
+
 // True when the string contains a frame placeholder (it may still be malformed; expand reports that).
 bool is_frame_pattern(const std::string& pattern);
 

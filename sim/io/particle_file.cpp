@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string_view>
@@ -30,7 +31,26 @@ void require_file(const std::filesystem::path& path) {
 
 std::string vec_str(const Vec3f& v) { return str("(", v.x(), ", ", v.y(), ", ", v.z(), ")"); }
 
-std::string bounds_str(const Aabb& b) { return b.empty() ? "(no points)" : vec_str(b.min) + " .. " + vec_str(b.max); }
+// Bounds to 0.1 mm, or to 1e-3 of the extent when that is finer: a fluid 10 km from the origin keeps its
+// millimetres (6 significant digits would round it to 10 cm), a 1 cm drop its hundredths of a millimetre.
+std::string bounds_str(const Aabb& b) {
+  if (b.empty()) return "(no points)";
+  const float extent = (b.max - b.min).maxCoeff();
+  const double step = extent > 0.0f ? std::min(1e-4, 1e-3 * double(extent)) : 1e-4;
+  const int decimals = std::clamp(int(std::ceil(-std::log10(step) - 1e-3)), 4, 9);
+  auto coordinate = [&](float v) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.*f", decimals, double(v));
+    std::string out = text;
+    if (out.find('.') != std::string::npos) {
+      while (out.back() == '0') out.pop_back();
+      if (out.back() == '.') out.pop_back();
+    }
+    return out == "-0" ? std::string("0") : out;
+  };
+  auto point = [&](const Vec3f& v) { return str("(", coordinate(v.x()), ", ", coordinate(v.y()), ", ", coordinate(v.z()), ")"); };
+  return point(b.min) + " .. " + point(b.max);
+}
 
 template <typename Positions>
 Aabb bounds_of(const Positions& positions) {

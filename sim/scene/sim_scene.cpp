@@ -3,7 +3,9 @@
 #include "sim/core/error.h"
 #include "sim/io/fluid_import.h"
 #include "sim/io/frame_pattern.h"
+#include "sim/io/io_bytes.h"
 #include "sim/scene/diffuse_params_reader.h"
+#include "sim/scene/scene_name.h"
 #include "sim/keys/scene_keys.h"
 #include "sim/scene/solids_reader.h"
 
@@ -19,7 +21,27 @@ Json with_generation(Json keys) {
   return keys;
 }
 
-bool is_name_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'; }
+// The scene's name: the key's, which must be usable as it is, or the one derived from the scene
+// file's (or the fluid files') name, made usable and said so in `notes`.
+std::string read_scene_name(const ParamReader& root, const std::string& default_name, std::vector<std::string>& notes) {
+  const std::string given = root.text(keys::scene::name.name(), default_name);
+  if (is_usable_scene_name(given)) return given;
+  const std::string usable = usable_scene_name(given);
+  const std::string allowed = "is not a usable folder name (letters, digits, _ - . only)";
+  if (root.has(keys::scene::name.name()))
+    root.fail_at("name", str("\"", given, "\" ", allowed, usable.empty() ? "" : str("; e.g. \"", usable, "\"")));
+  if (usable.empty())
+    root.fail_at("name", str("\"", given, "\", taken from the file name, ", allowed,
+                             "; give the scene a name with the key name (or --set name=NAME)"));
+  notes.push_back(str("scene name: ", usable, ", the folder of its results (taken from the file name \"", given,
+                      "\", which ", allowed, "); the key name (or --set name=NAME) gives another"));
+  return usable;
+}
+
+// fluid.vdb_grid means something only to OpenVDB files.
+bool reads_vdb_grids(const std::string& file_pattern) {
+  return io::ends_with(io::lower_file_name(std::filesystem::path(file_pattern)), ".vdb");
+}
 
 }  // namespace
 
@@ -27,9 +49,7 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
                         const std::string& default_name) {
   namespace k = keys;
   SimScene scene;
-  scene.name = root.text(k::scene::name.name(), default_name);
-  if (scene.name.empty() || !std::all_of(scene.name.begin(), scene.name.end(), is_name_char) || scene.name[0] == '.')
-    root.fail_at("name", str("\"", scene.name, "\" is not a usable folder name; use letters, digits, _ - ."));
+  scene.name = read_scene_name(root, default_name, scene.import_notes);
   scene.gravity = root.vec3(k::scene::gravity);
 
   const ParamReader fluid = root.child("fluid");
@@ -63,8 +83,15 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
                                                     fluid.text(k::fluid::vdb_grid.name(), ""), given_scale,
                                                     scene.fluid.fps);
     scene.read = import.read;
+    if (!reads_vdb_grids(scene.file_pattern)) {
+      if (fluid.has(k::fluid::vdb_grid.name()))
+        scene.import_notes.push_back(str("warning: fluid.vdb_grid \"", scene.read.vdb_grid, "\" does not apply to ",
+                                         std::filesystem::path(scene.file_pattern).filename().string(),
+                                         " (it picks a point grid of an OpenVDB .vdb cache): ignored"));
+      scene.read.vdb_grid.clear();
+    }
     scene.velocity_scale = import.velocity_scale;
-    scene.import_notes = import.notes;
+    scene.import_notes.insert(scene.import_notes.end(), import.notes.begin(), import.notes.end());
     if (particles == "auto" && import.mantaflow) {
       scene.flip_particles = true;
       scene.import_notes.push_back("particles: flip (fluid.particles \"auto\": Mantaflow's particles are FLIP "
@@ -106,6 +133,11 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
   if (fluid_keys.is_object()) {
     fluid_keys.erase("frames");
     fluid_keys["particles"] = scene.flip_particles ? "flip" : "sph";  // what "auto" decided, not the word
+    if (scene.source == FluidSourceKind::Files) {
+      // The files by what they are, not by how the path was typed (relative, absolute, $F4 or %04d).
+      fluid_keys["files"] = canonical_frame_pattern(scene.file_pattern);
+      if (!reads_vdb_grids(scene.file_pattern)) fluid_keys.erase("vdb_grid");  // ignored: no change of input
+    }
   }
   Json keys = {{"gravity", root.effective("gravity")}, {"fluid", fluid_keys}, {"solids", root.effective("solids")}};
   // What "auto" and a Mantaflow config decided shapes the frames as much as the keys do.

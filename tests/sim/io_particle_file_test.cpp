@@ -111,8 +111,9 @@ TEST(IoParticleFile, DescribesTheRealFrame) {
   EXPECT_TRUE(contains(d, "points: 30192")) << d;
   EXPECT_TRUE(contains(d, "id (int, 1), velocity (vector, 3), density (float, 1)")) << d;
   EXPECT_TRUE(contains(d, "ids: 0 .. 30191")) << d;
-  // Bounds from the Python decode in io_bgeo_test.cpp (printed with 6 significant digits).
-  EXPECT_TRUE(contains(d, "bounds: (-1.91, 0.0899902, -0.66) .. (-0.99, 1.52999, 0.66)")) << d;
+  // Bounds from the Python decode in io_bgeo_test.cpp (min (-1.91000009, 0.08999019, -0.65999997), max
+  // (-0.99000013, 1.52999020, 0.66000003)), printed to 0.1 mm without trailing zeros.
+  EXPECT_TRUE(contains(d, "bounds: (-1.91, 0.09, -0.66) .. (-0.99, 1.53, 0.66)")) << d;
 }
 
 TEST(IoParticleFile, DescribesDiffuseCachesAndFluidCaches) {
@@ -141,4 +142,23 @@ TEST(IoParticleFile, DescribesDiffuseCachesAndFluidCaches) {
   EXPECT_TRUE(contains(fluid, "particle radius 0.025 m")) << fluid;
   EXPECT_TRUE(contains(fluid, "points: 3")) << fluid;
   EXPECT_TRUE(contains(fluid, "bounds: (-1, -2, 0) .. (1, 2, 3)")) << fluid;
+}
+
+// Bounds resolve 0.1 mm however far from the origin (6 significant digits would print 10 km as 10000,
+// 10 cm), and 1e-3 of the extent for smaller fluids (a 1 cm drop to 10 micrometres).
+TEST(IoParticleFile, BoundsKeepMillimetresFarOutAndScaleDownForSmallFluids) {
+  TempDir dir;
+  FluidFrame far;
+  // Floats near 1e4 are 2^-10 m apart: 10000 + 5 / 1024 = 10000.0048828125 is exact, as are the others.
+  far.positions = {Vec3f(10000.0f + 5.0f / 1024, 0.5f, -10000.0f - 5.0f / 1024),
+                   Vec3f(10001.0f + 5.0f / 1024, 0.75f, -9999.5f)};
+  write_ply(dir.path / "far.ply", far);
+  const std::string text = describe_particle_file(dir.path / "far.ply");
+  EXPECT_TRUE(contains(text, "bounds: (10000.0049, 0.5, -10000.0049) .. (10001.0049, 0.75, -9999.5)")) << text;
+
+  FluidFrame drop;  // 1 cm across: 5 decimals
+  drop.positions = {Vec3f(0.0012346f, 0.002f, 0.003f), Vec3f(0.0112346f, 0.0045f, 0.005f)};
+  write_ply(dir.path / "drop.ply", drop);
+  const std::string small = describe_particle_file(dir.path / "drop.ply");
+  EXPECT_TRUE(contains(small, "bounds: (0.00123, 0.002, 0.003) .. (0.01123, 0.0045, 0.005)")) << small;
 }

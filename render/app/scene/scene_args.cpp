@@ -11,10 +11,11 @@
 namespace spume {
 namespace {
 
-// The scene name for a bare file pattern: its file name without the frame placeholder.
+// The scene name for a bare file pattern: its file name without the frame placeholder (read_sim_scene
+// makes it usable as a folder name, and says so).
 std::string name_from_pattern(const std::string& pattern) {
   std::string stem = std::filesystem::path(pattern).filename().string();
-  stem = stem.substr(0, stem.find_first_of("%#."));
+  stem = stem.substr(0, stem.find_first_of("%#.$"));
   while (!stem.empty() && (stem.back() == '_' || stem.back() == '-')) stem.pop_back();
   return stem.empty() ? "fluid" : stem;
 }
@@ -84,8 +85,7 @@ SceneSetup load_scene_setup(const cli::ParsedArgs& args, const std::vector<std::
       if (!args.positional.empty())
         cli::usage_fail("give either a SCENE file (", args.positional[0], ") or --fluid, not both");
       if (!args.has("radius")) cli::usage_fail("--fluid needs --radius R (the fluid particle radius in m)");
-      Json scene = {{"name", name_from_pattern(*args.value("fluid"))},
-                    {"fluid",
+      Json scene = {{"fluid",
                      {{"source", "files"},
                       {"files", *args.value("fluid")},
                       {"radius", cli::parse_double(*args.value("radius"), "--radius")},
@@ -94,7 +94,7 @@ SceneSetup load_scene_setup(const cli::ParsedArgs& args, const std::vector<std::
         const TankOption option = tank_from_option(*tank);
         if (option.kind != TankOption::Kind::None) scene["solids"] = Json::array({option.solid});
       }
-      return scene_from_json(std::move(scene), "--fluid", ".", "fluid", overrides);
+      return scene_from_json(std::move(scene), "--fluid", ".", name_from_pattern(*args.value("fluid")), overrides);
     }
     if (args.has("radius") || args.has("fps") || args.has("tank"))
       cli::usage_fail("--radius, --fps and --tank go with --fluid (a scene file lists its tank under \"solids\")");
