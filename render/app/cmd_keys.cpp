@@ -1,5 +1,5 @@
 // spume keys: every scene key with its type, unit, default, allowed values and meaning, from the
-// declarations themselves (keys/key_spec.h), so a user need not open the README.
+// declarations themselves (keys/key_spec.h), so a user need not open sim/keys/KEYS.md.
 #include <cstdio>
 
 #include "render/app/commands.h"
@@ -9,9 +9,9 @@
 namespace spume {
 namespace {
 
-// The README's tables of the keys under `prefix` ("" for all), ready to paste: a group whose every
-// key is chosen keeps its <!-- keys: ... --> markers; a part of a group is a table without them, so
-// it cannot be pasted over the whole group's table by mistake. "" when no key starts with `prefix`.
+// The tables of sim/keys/KEYS.md for the keys under `prefix` ("" for all), ready to paste: a group
+// whose every key is chosen keeps its <!-- keys: ... --> markers; a part of a group is a table without
+// them, so it cannot be pasted over the whole group's table by mistake. "" when no key starts with it.
 std::string markdown_tables(const std::string& prefix) {
   std::string out;
   for (const KeyGroup& g : key_groups()) {
@@ -45,7 +45,7 @@ Command cmd_keys() {
   spec.forms = {"[PREFIX] [options]"};
   spec.summary = "every scene key: type, unit, default, allowed values, meaning (e.g. spume keys render.water)";
   spec.options = {{"markdown", "",
-                   "as the README's markdown tables (a whole group between its <!-- keys: ... --> markers)"}};
+                   "as the tables of sim/keys/KEYS.md (a whole group with its <!-- keys --> markers)"}};
   spec.runs_without_arguments = true;
   return {spec, list_keys};
 }

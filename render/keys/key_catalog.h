@@ -1,6 +1,6 @@
 #pragma once
-// Every declared key, by group, for people: `spume keys [PREFIX]` prints them, and the README's key
-// tables are these tables (tests/render/key_tables_test.cpp compares the two).
+// Every declared key, by group, for people: `spume keys [PREFIX]` prints them, and the key tables
+// of sim/keys/KEYS.md are these tables (tests/render/key_tables_test.cpp compares the two).
 #include <span>
 #include <string>
 #include <vector>
@@ -10,7 +10,7 @@
 namespace spume {
 
 struct KeyGroup {
-  const char* name;  // "diffuse": the README marks its table <!-- keys: diffuse -->
+  const char* name;  // "diffuse": sim/keys/KEYS.md marks its table <!-- keys: diffuse -->
   std::span<const KeySpec* const> keys;
 };
 

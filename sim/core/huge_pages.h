@@ -1,8 +1,8 @@
 #pragma once
-// Transparent huge pages for large arrays. On a virtual machine a page fault is expensive: touching
-// fresh memory cost about 2.6 ms a MiB in 4 KiB pages on the machine this was measured on, 0.06 ms
-// a MiB in 2 MiB pages. Linux gives 2 MiB pages to memory advised so when THP runs in madvise mode
-// (Debian's default), and to all anonymous memory in "always" mode.
+// Transparent huge pages for large arrays. On a virtual machine a page fault is expensive, and a
+// 2 MiB page costs one fault where 4 KiB pages cost 512 (tests/bench/RESULTS.md §4). Linux gives
+// 2 MiB pages to memory advised so when THP runs in madvise mode (Debian's default), and to all
+// anonymous memory in "always" mode.
 #include <sys/mman.h>
 
 #include <cstddef>
@@ -22,8 +22,8 @@ inline void advise_huge_pages(void* p, size_t bytes) {
 // While one of these lives (on any thread), operator new (allocation_budget.cpp) advises huge pages
 // for every block of kHugePageRequestBytes or more. For stages whose large arrays are fresh memory
 // again and again: the diffuse stage's grow with the particle count, frame after frame, and their
-// faults were a sixth of a 15M frame. Not for the whole program: the fluid solver allocates its
-// arrays once, and in huge pages it ran 4-17% slower (measured, bench_fluid at 633k).
+// page faults were a large share of a 15M frame. Not for the whole program: the fluid solver
+// allocates its arrays once, and ran slower in huge pages (tests/bench/RESULTS.md §3.2).
 class HugePagesForLargeBlocks {
  public:
   HugePagesForLargeBlocks();

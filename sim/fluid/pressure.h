@@ -15,24 +15,13 @@
 // fluid.solver.wall_pressure = extrapolated (walls != nullptr), extrapolated from the fluid beside the
 // wall. The own form cannot hold deep water: with boundary layers that complete a particle's
 // neighbourhood, sum_b V_b grad W_ib is about minus the fluid's sum, so a floor particle's own pressure
-// cancels on itself and only its neighbours' pressures move it (down). On a resting lattice the first
-// steps then let every other layer fall freely, a velocity field the density residual cannot see
-// (layers k +- 1 cancel in it), and a 20-layer pool churns at up to 1 m/s; extrapolated, 0.33 m/s (README,
-// Deep fluid against walls). Mirroring (k_b = k_i) fixes the floor but leaves a wall uniform in pressure
-// along it, so a particle at a side wall gets only its fluid half's share of the vertical gradient (a
-// quarter in an edge): edges then ran down at 0.9 m/s. The extrapolated form is not the default yet:
-// the dam break's front leads Martin & Moyce by 11.8-12.3% (12% allowed), deep water also needs a
-// max_dt by r, and every solver scene would change. (A floating box's draft read 12% short with it,
-// but both forms follow Archimedes' slope: the own form lets the fluid stand r/2 from the walls instead
-// of r, which moves the test's water level. Overlapping starting particles were flung until
-// fluid.solver.start_clearance left them out. README, Deep fluid against walls.)
+// cancels on itself and every other layer falls, unseen by the density residual. Why the extrapolated
+// form is not the default yet: sim/MODEL.md §10; measured in tests/bench/RESULTS.md §7.
 //
 // Warm start ([BK17]; optional, off by default): each solve first applies half the previous
-// step's total pressure where the fluid is compressed now. It saves about half the iterations in
-// deep water, but measured here it keeps feeding energy into a tank at rest: pressure re-applied
-// where the fluid no longer needs it expands the fluid, and residual clamping cannot take that back
-// (rms speed 3-13 cm/s after 2 s at 4000 particles, against 0.8 cm/s without; variants that also
-// let iterations lower the pressure needed relaxation and were no cheaper, or diverged).
+// step's total pressure where the fluid is compressed now. Off, because pressure re-applied where the
+// fluid no longer needs it expands the fluid, and residual clamping cannot take that back: it feeds
+// energy into a tank at rest (tests/bench/RESULTS.md §6).
 #include "sim/fluid/boundary.h"
 #include "sim/fluid/boundary_pressure.h"
 #include "sim/fluid/fluid_params.h"

@@ -21,10 +21,10 @@
 // reacts one step late, which is stable for bodies down to about a third of the fluid's density at
 // the CFL steps used here (lighter ones may need a smaller max_dt). Known weakness of this explicit
 // scheme: the pressure solve treats the body's velocity as given, so fluid squeezed between a body
-// and a wall pushes as hard as it takes to get out of the way. A dense box (2000 kg/m^3) hitting the
-// tank floor at 0.66 m/s through a one-particle film rebounded ~6 cm and spun at ~16 rad/s before
-// settling flat (measured at r = 10 mm); an implicit body-fluid solve would remove this. A last
-// layer of particles stays trapped under a flat body resting on a wall.
+// and a wall pushes as hard as it takes to get out of the way: a dense box landing on the tank floor
+// through a one-particle film rebounds and spins before settling (tests/bench/RESULTS.md §6). A last
+// layer of particles stays trapped under a flat body resting on a wall. An implicit body-fluid solve
+// would remove both (sim/MODEL.md §10).
 //
 // References: [BK15] Bender, Koschier: Divergence-free smoothed particle hydrodynamics, SCA 2015.
 // [BK17] Bender, Koschier: Divergence-free SPH for incompressible and viscous fluids, IEEE TVCG 2017.

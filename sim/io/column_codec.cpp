@@ -43,14 +43,9 @@ void CacheBytes::append(const void* data, size_t bytes) {
 }
 
 // One block a chunk compresses large frames faster and smaller: zstd keeps its context over 1 MiB
-// instead of 256 KiB. Measured on the lighthouse (one core, zstd at level 1), frame 140 (13.6M
-// particles): 412 against 360 ms, 11.76 against 11.67 bytes a particle; of its 12 frames of 2.1M or
-// more tried, all were faster and all but one smaller (that one by 0.002). The SPlisHSPlasH dam break
-// with its emission raised to 2.2-5.6M a frame: 15-20% faster, the bytes within 0.07 a particle
-// either way (13 frames larger, 18 smaller). Below about 2M, a block
-// spans two or three of a column's x, y and z planes, which bit-shuffle worse together: the
-// SPlisHSPlasH dam break's frame 20 (146k) would grow from 11.54 to 12.27 bytes a particle, the
-// lighthouse's frames of 1.6-1.9M by up to 0.07 (README, Paper scale).
+// instead of 256 KiB. Below about 2M particles a 1 MiB block spans two or three of a column's x, y
+// and z planes, which bit-shuffle worse together, so small frames keep 256 KiB blocks (measured in
+// tests/bench/RESULTS.md §5).
 size_t column_block_bytes(size_t particles) {
   return particles >= kLargeBlockParticles ? kLargeColumnBlockBytes : kSmallColumnBlockBytes;
 }

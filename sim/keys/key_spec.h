@@ -2,8 +2,8 @@
 // One declaration per scene key: where it is in the JSON, its type and unit, its default (absolute,
 // a multiple of the particle radius r, or carried to r by Froude similarity from r0 = 0.02 m), the
 // range it may take, and one line of doc. The readers read through these (core/params.h), the range
-// checks come from them, `spume keys` prints them and the README's key tables are generated from them
-// (tests/sim/key_tables_test.cpp fails when the two differ). No default or range is written elsewhere.
+// checks come from them, `spume keys` prints them and the tables of sim/keys/KEYS.md come from them
+// (tests/render/key_tables_test.cpp fails when the two differ). No default or range is written elsewhere.
 #include <array>
 #include <cmath>
 #include <limits>

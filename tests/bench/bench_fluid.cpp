@@ -7,7 +7,7 @@
 // same scene at r = 10.4 mm (48 x 96 x 48 = 221,184 particles; takes minutes), and a third at the
 // paper's size, r = 7.25 mm (68 x 137 x 68 = 633,488 particles, the lighthouse's 640k), for its first
 // 0.1 s only (about a minute). These three use the defaults.
-// The two finer columns are not right with the defaults (README, Deep fluid against walls): at
+// The two finer columns are not right with the defaults (tests/bench/RESULTS.md §7): at
 // 10.4 mm a particle in a bottom edge runs into the wall at 9.8 m/s in the first 0.3 s; at r = 7.3 mm
 // (68 x 136 x 68 = 628,864) the solver blows up at t = 0.068 s, and 7.25 mm passes the blow-up check
 // only: a particle squeezed into a vertical edge of the tank runs up it at 17 m/s. Three more cases
@@ -61,7 +61,7 @@ void BM_DamBreak(benchmark::State& state) {
       seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       // Untimed: whether the flow is right. The fastest particle of a healthy column is its surge
       // front (about 2.4 m/s at 0.1 s); a jet up an edge shows as 5-17 m/s and a squeezed particle as
-      // a density ratio well above 1 (README, Deep fluid against walls).
+      // a density ratio well above 1 (tests/bench/RESULTS.md §7).
       state.PauseTiming();
       const FluidFrame frame = solver.frame(f);
       for (const Vec3f& v : frame.velocities) fastest = std::max(fastest, double(v.norm()));

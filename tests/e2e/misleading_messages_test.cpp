@@ -85,7 +85,7 @@ TEST_F(Messages, FrameNamesMustSayPng) {
 }
 
 // Case 9. A key written at its default value is the run's value: diffuse.drag 0.5 is the declared
-// default (keys/diffuse_keys.h; README key table), so caches made without it are current for it; a
+// default (sim/keys/diffuse_keys.h; sim/keys/KEYS.md), so caches made without it are current for it; a
 // real change is named by both values.
 TEST_F(Messages, AKeyWrittenAtItsDefaultIsNoChange) {
   ASSERT_EQ(run_spume("simulate " + args()).status, 0);
@@ -118,7 +118,7 @@ TEST_F(Messages, AKeyVariedTwiceIsAUsageError) {
   EXPECT_TRUE(contains(r.output, "--vary render.alpha=10,20,30,40")) << r.output;
 }
 
-// Case 12. keys --markdown PREFIX prints the keys under PREFIX only: a whole group with its README
+// Case 12. keys --markdown PREFIX prints the keys under PREFIX only: a whole group with its KEYS.md
 // markers, part of one without them.
 TEST_F(Messages, KeysMarkdownHonoursThePrefix) {
   CommandResult r = run_spume("keys --markdown render.water");

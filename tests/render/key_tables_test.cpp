@@ -1,5 +1,5 @@
-// Every key declared once: the README's key tables are the declarations' (regenerate them with
-// `spume keys --markdown`), every group's table is in the README, and the declarations hold together.
+// Every key declared once: the key tables of sim/keys/KEYS.md are the declarations' (regenerate them
+// with `spume keys --markdown`), every group's table is there, and the declarations hold together.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -13,24 +13,25 @@
 namespace spume {
 namespace {
 
-std::string readme() {
-  std::ifstream in(std::string(SPUME_SOURCE_DIR) + "/README.md");
+std::string keys_document() {
+  std::ifstream in(std::string(SPUME_SOURCE_DIR) + "/sim/keys/KEYS.md");
   std::stringstream text;
   text << in.rdbuf();
   return text.str();
 }
 
-TEST(KeyTables, TheReadmeShowsEveryGroupExactlyAsDeclared) {
-  const std::string text = readme();
+TEST(KeyTables, TheKeysDocumentShowsEveryGroupExactlyAsDeclared) {
+  const std::string text = keys_document();
   ASSERT_FALSE(text.empty());
   for (const KeyGroup& g : key_groups()) {
     const std::string open = std::string("<!-- keys: ") + g.name + " -->\n", close = "<!-- /keys -->";
     const size_t at = text.find(open);
-    ASSERT_NE(at, std::string::npos) << "README.md has no table for " << g.name;
+    ASSERT_NE(at, std::string::npos) << "sim/keys/KEYS.md has no table for " << g.name;
     const size_t end = text.find(close, at);
     ASSERT_NE(end, std::string::npos) << g.name;
     EXPECT_EQ(text.substr(at + open.size(), end - at - open.size()), key_table_markdown(g))
-        << "README.md's table of " << g.name << " differs from the declarations: run `build/spume keys --markdown`";
+        << "sim/keys/KEYS.md's table of " << g.name
+        << " differs from the declarations: run `build/spume keys --markdown`";
   }
 }
 

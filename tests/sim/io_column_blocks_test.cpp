@@ -23,7 +23,7 @@ using namespace spume::testing;
 
 namespace {
 
-// The documented rule (README, Compact diffuse caches): 1 MiB chunks, each one block in frames of
+// The documented rule (sim/MODEL.md §11): 1 MiB chunks, each one block in frames of
 // 2^21 particles or more, four of 256 KiB below.
 constexpr size_t kChunk = size_t(1) << 20, kSmall = size_t(256) << 10, kLarge = kChunk;
 constexpr size_t kThreshold = size_t(1) << 21;
