@@ -104,18 +104,56 @@ TEST(NarrowBand, FullBlockAndSmallAirPocketAreLeftAsTheyAre) {
   for (const Vec3f& p : full)
     if ((p - Vec3f::Constant(kSide / 2)).cwiseAbs().maxCoeff() > kH) pocket.push_back(p);
   for (const auto* fluid : {&full, &pocket}) {
-    FluidStepState state = testing::state_of(*fluid, std::vector<Vec3f>(fluid->size(), Vec3f(1, 0, 0)));
-    const FluidStepState before = state;
-    InteriorFiller filler;
-    const InteriorFill fill = filler.fill(state, kH, kS, Vec3f(0, -9.81f, 0), nullptr);
-    EXPECT_FALSE(fill.narrow_band);
-    EXPECT_EQ(fill.filled, 0u);
-    ASSERT_EQ(state.positions.size(), before.positions.size());
-    EXPECT_EQ(std::memcmp(state.positions.data(), before.positions.data(), state.positions.size() * sizeof(Vec3f)), 0);
-    if (fluid == &pocket) {
-      EXPECT_GT(fill.enclosed_cells, 0u);  // seen, and judged too small to be a band
+    for (const bool flip : {false, true}) {
+      InteriorFiller filler;
+      const InteriorFill fill = filler.examine(*fluid, kH, Vec3f(0, -9.81f, 0), flip);
+      EXPECT_FALSE(fill.large);
+      EXPECT_FALSE(fill.narrow_band);
+      if (fluid == &pocket) EXPECT_GT(fill.enclosed_cells, 0u);  // seen, and judged too small to be a band
     }
+    // Through a run: nothing is added to the fluid.
+    FrameStats stats;
+    classify_probes(*fluid, interior_probes(), true, &stats);
+    EXPECT_FALSE(stats.interior.narrow_band);
+    EXPECT_EQ(stats.interior.filled, 0u);
   }
+}
+
+// The SPH block (r = 0.02, 1.2 x 0.8 x 0.8 m on a 2r lattice) with a spherical void of radius
+// 0.26 m about its centre: by hand, the void's edge lies 0.14 m under the top and the y, z bounds and
+// 0.34 m from the x bounds, so its depth spreads over about 0.2 m, 2.5 cells of h = 0.08 m, where a
+// band's inner edge lies at one depth. Enclosed and large (the void is 9.6% of the block), but an air
+// pocket unless the cache is FLIP; a hollow block with a band 3 h deep is a band either way.
+TEST(NarrowBand, AnAirPocketInAnSphBlockIsNotABandButAHollowBlockIs) {
+  const Vec3f size(1.2f, 0.8f, 0.8f), centre = size / 2;
+  std::vector<Vec3f> void_block, hollow;
+  for (const Vec3f& p : testing::lattice(Vec3f::Constant(kR), size - Vec3f::Constant(kR), kS)) {
+    if ((p - centre).norm() > 0.26f) void_block.push_back(p);
+    const float depth = std::min({p.x(), size.x() - p.x(), p.y(), size.y() - p.y(), p.z(), size.z() - p.z()});
+    if (depth < 3 * kH) hollow.push_back(p);
+  }
+  InteriorFiller filler;
+  const InteriorFill pocket = filler.examine(void_block, kH, Vec3f(0, -9.81f, 0), false);
+  EXPECT_TRUE(pocket.large) << pocket.enclosed_cells << " of " << pocket.occupied_cells;
+  EXPECT_FALSE(pocket.constant_depth) << pocket.depth_low << " to " << pocket.depth_high;
+  EXPECT_FALSE(pocket.narrow_band);
+  EXPECT_GT(pocket.depth_high - pocket.depth_low, kBandDepthSpreadCells * kH);
+  EXPECT_NE(describe_interior(pocket).find("AIR POCKET, not filled"), std::string::npos) << describe_interior(pocket);
+  const InteriorFill flip = filler.examine(void_block, kH, Vec3f(0, -9.81f, 0), true);
+  EXPECT_TRUE(flip.narrow_band);  // a FLIP source: its enclosed interior is the band's
+
+  const InteriorFill band = filler.examine(hollow, kH, Vec3f(0, -9.81f, 0), false);
+  EXPECT_TRUE(band.constant_depth) << band.depth_low << " to " << band.depth_high;
+  EXPECT_TRUE(band.narrow_band);
+  // The band's inner edge: 3 h under each face, to within a cell.
+  EXPECT_NEAR(band.depth_median, 3 * kH, kH) << band.depth_median;
+
+  // Through a run (SPH): the block with the void is left as it was, and says why.
+  FrameStats stats;
+  classify_probes(void_block, {centre}, true, &stats);
+  EXPECT_TRUE(stats.interior.large);
+  EXPECT_FALSE(stats.interior.narrow_band);
+  EXPECT_EQ(stats.interior.filled, 0u);
 }
 
 TEST(NarrowBand, FilledInteriorMovesWithTheBand) {
@@ -125,9 +163,10 @@ TEST(NarrowBand, FilledInteriorMovesWithTheBand) {
   const auto hollow = cube(3 * kH, true);
   FluidStepState state = testing::state_of(hollow, std::vector<Vec3f>(hollow.size(), u));
   InteriorFiller filler;
-  const InteriorFill fill = filler.fill(state, kH, kS, Vec3f(0, -9.81f, 0), nullptr);
-  ASSERT_TRUE(fill.narrow_band);
-  ASSERT_EQ(state.positions.size(), hollow.size() + fill.filled);
+  ASSERT_TRUE(filler.examine(state.positions, kH, Vec3f(0, -9.81f, 0), false).narrow_band);
+  const size_t filled = filler.fill(state, kH, kS, Vec3f(0, -9.81f, 0), nullptr);
+  ASSERT_GT(filled, 0u);
+  ASSERT_EQ(state.positions.size(), hollow.size() + filled);
   for (size_t i = hollow.size(); i < state.positions.size(); ++i) {
     ASSERT_EQ(state.velocities[i], u) << i;
     ASSERT_EQ(state.motion[i], u) << i;
