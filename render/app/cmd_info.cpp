@@ -3,6 +3,7 @@
 #include <cctype>
 #include <cstddef>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -75,7 +76,11 @@ std::pair<float, std::string> implied_radius(const fs::path& path, const FluidIm
       if (g.used && g.points && g.voxel_size > 0.0)
         return {float(g.voxel_size / 4.0), str("a quarter of Mantaflow's cell, ", g.voxel_size, " m")};
   }
-  return {0.5f * median_spacing(frame.positions), "half the median nearest-neighbour distance"};
+  // To 3 digits, as it is printed and would be given: on a lattice, cells of h = 2 spacings put
+  // particles on cell faces, where the last bit of h would move them from cell to cell.
+  char digits[32];
+  std::snprintf(digits, sizeof digits, "%.3g", 0.5 * double(median_spacing(frame.positions)));
+  return {float(std::strtod(digits, nullptr)), "half the median nearest-neighbour distance, to 3 digits"};
 }
 
 // Whether a fluid frame is a narrow band (MODEL.md §9.1), by the run's own test: on cells of h = 4 r

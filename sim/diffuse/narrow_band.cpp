@@ -51,15 +51,12 @@ std::string describe_interior(const InteriorFill& f) {
                " occupied: below the ", 100.0 * kNarrowBandShare, "% of a narrow band)");
   const std::string enclosed = str(f.enclosed_cells, " enclosed empty", cells, " beside ", f.occupied_cells, " occupied");
   const std::string depth = str(f.depth_low, " to ", f.depth_high, " m under the surface (10th to 90th percentile of its edge)");
-  if (f.narrow_band && f.flip_source)
+  if (f.narrow_band)
     return str("a NARROW BAND: ", enclosed, ", in a FLIP cache (fluid.particles = flip), which keeps particles only near "
                "the surface; its edge lies ", depth);
-  if (f.narrow_band)
-    return str("a NARROW BAND: ", enclosed, ", whose edge lies at a constant depth, ", depth,
-               ", as the inner edge of a band that a FLIP cache keeps under the surface");
-  return str("an AIR POCKET, not filled: ", enclosed, ", whose edge lies ", depth, ": not the constant depth of a "
-             "band's inner edge (within ", kBandDepthSpreadCells, " cells), and the cache is not known to be FLIP "
-             "(fluid.particles = flip fills it)");
+  return str("ENCLOSED, not filled: ", enclosed, ", whose edge lies ", depth, "; the cache is not known to be FLIP, so "
+             "this is taken as air (a pocket of it), not as the empty interior of a narrow band (set fluid.particles "
+             "to \"flip\" to fill it)");
 }
 
 bool InteriorFiller::flood(const std::vector<Vec3f>& positions, float cell, const Vec3f& gravity,
@@ -181,8 +178,7 @@ InteriorFill InteriorFiller::examine(const std::vector<Vec3f>& positions, float 
   result.depth_low = quantile(depths, 0.1);
   result.depth_median = quantile(depths, 0.5);
   result.depth_high = quantile(depths, 0.9);
-  result.constant_depth = result.depth_high - result.depth_low <= kBandDepthSpreadCells * cell;
-  result.narrow_band = flip_source || result.constant_depth;
+  result.narrow_band = flip_source;
   return result;
 }
 

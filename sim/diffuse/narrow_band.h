@@ -21,11 +21,6 @@ namespace spume {
 inline constexpr double kNarrowBandShare = 0.05;
 // ... and at least this many cells.
 inline constexpr size_t kNarrowBandMinCells = 8;
-// Without a FLIP source, the enclosed interior's edge must lie at a roughly constant depth under the
-// surface, as a band's inner edge does: the 10th to 90th percentile of that depth within this many
-// cells. A band's edge, drawn on cells, spreads over about one; a round pocket in a block of water
-// lies nearer the surface on some sides than on others.
-inline constexpr float kBandDepthSpreadCells = 1.5f;
 
 // What the test measured on a frame, and what it decided.
 struct InteriorFill {
@@ -37,8 +32,7 @@ struct InteriorFill {
   // Depth under the surface (to the nearest cell the air reaches, or the particles' bounds) of the
   // occupied cells bordering the enclosed interior, in m: 10th, 50th and 90th percentile (when large).
   float depth_low = 0.0f, depth_median = 0.0f, depth_high = 0.0f;
-  bool constant_depth = false;  // depth_high - depth_low <= kBandDepthSpreadCells cells
-  bool narrow_band = false;     // large && (flip_source || constant_depth): filled in a run
+  bool narrow_band = false;     // large && flip_source: filled in a run
   bool skipped = false;         // the particles spread over too many cells to look (nothing decided)
   size_t filled = 0;            // particles a run appended to this frame
 };

@@ -69,20 +69,20 @@ class BlockCaches : public ::testing::Test {
   const fs::path& dir = temp.path;
 };
 
-// Case 3. The void is enclosed (9.6% of the block) but lies 0.14 to 0.34 m under the surface, not at
-// the one depth of a band's inner edge, and the cache is SPH: an air pocket, not filled, said once.
+// Case 3. The void is enclosed (9.6% of the block), but the cache is not known to be FLIP: air, not
+// filled, said once with what was measured.
 TEST_F(BlockCaches, AnAirPocketInAnSphCacheIsNotFilledAndTheRunSaysWhy) {
   const CommandResult info = run_spume("info " + (dir / "pocket/f_1.bgeo").string());
   ASSERT_EQ(info.status, 0) << info.output;
   const std::string verdict = info_verdict(info.output);
-  EXPECT_TRUE(verdict.rfind("an AIR POCKET, not filled: ", 0) == 0) << info.output;
+  EXPECT_TRUE(verdict.rfind("ENCLOSED, not filled: ", 0) == 0) << info.output;
   const CommandResult r = simulate("pocket");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_TRUE(contains(r.output, "note: frame 1's interior: " + verdict)) << r.output;
   EXPECT_EQ(occurrences(r.output, "'s interior: "), 1u) << r.output;  // one note, not one a frame
   EXPECT_FALSE(contains(r.output, "massless particles")) << r.output;
   EXPECT_FALSE(contains(r.output, "narrow-band cache")) << r.output;
-  EXPECT_TRUE(contains(r.output, "fluid.particles = flip fills it")) << r.output;
+  EXPECT_TRUE(contains(r.output, "set fluid.particles to \"flip\" to fill it")) << r.output;
   // Said to be FLIP, its enclosed interior is a band's, and filled.
   const CommandResult flip = simulate("pocket", "--set fluid.particles=flip");
   ASSERT_EQ(flip.status, 0) << flip.output;
@@ -91,17 +91,20 @@ TEST_F(BlockCaches, AnAirPocketInAnSphCacheIsNotFilledAndTheRunSaysWhy) {
   EXPECT_TRUE(contains(flip.output, "massless particles")) << flip.output;
 }
 
-// A band of one depth under every face is a narrow band even without a FLIP source; info and the
-// run say so with the same numbers.
-TEST_F(BlockCaches, ABandOfConstantDepthIsFilledAndInfoAgrees) {
+// A block hollow below a band 3 h deep, as a FLIP cache might keep it: from SPH files it is not filled
+// either (nothing says it is FLIP); said to be FLIP, it is. info and the run say the same of it.
+TEST_F(BlockCaches, AHollowBlockIsFilledWhenSaidToBeFlipAndInfoAgrees) {
   const CommandResult info = run_spume("info " + (dir / "hollow/f_1.bgeo").string());
   ASSERT_EQ(info.status, 0) << info.output;
   const std::string verdict = info_verdict(info.output);
-  EXPECT_TRUE(verdict.rfind("a NARROW BAND: ", 0) == 0) << info.output;
-  EXPECT_TRUE(contains(verdict, "at a constant depth")) << info.output;
+  EXPECT_TRUE(verdict.rfind("ENCLOSED, not filled: ", 0) == 0) << info.output;
   const CommandResult r = simulate("hollow");
   ASSERT_EQ(r.status, 0) << r.output;
-  EXPECT_TRUE(contains(r.output, "frame 1's interior: " + verdict + "; filled with ")) << r.output;
+  EXPECT_TRUE(contains(r.output, "note: frame 1's interior: " + verdict)) << r.output;
+  const CommandResult flip = simulate("hollow", "--set fluid.particles=flip");
+  ASSERT_EQ(flip.status, 0) << flip.output;
+  EXPECT_TRUE(contains(flip.output, "frame 1's interior: a NARROW BAND: ")) << flip.output;
+  EXPECT_TRUE(contains(flip.output, "massless particles")) << flip.output;
 }
 
 // Case 1. The shared jet's frame 30: info and a run over frames 30-31 give the same verdict, with the
