@@ -3,6 +3,7 @@
 #include <cctype>
 #include <cstddef>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -12,6 +13,7 @@
 #include "sim/core/error.h"
 #include "sim/core/messages.h"
 #include "sim/diffuse/narrow_band.h"
+#include "sim/io/vdb_points.h"
 #include "sim/io/fluid_import.h"
 #include "sim/io/fluid_survey.h"
 #include "sim/io/particle_file.h"
@@ -65,37 +67,47 @@ std::pair<std::string, long> sequence_of(const std::string& name) {
        "number):", listing);
 }
 
-// Whether a fluid frame is a narrow band (MODEL.md §9.1), tested as a run would: cells of h = 4r with r
-// from the frame's own spacing, flood-filled from above (spume's -y gravity, after the up axis "auto"
-// decides). "" for files that are not fluid frames.
+// The radius a run on this file would be told to use: a quarter of the cell of a Mantaflow cache (its
+// default 2 particles per cell and axis, the point grid's voxel size), else half the median distance
+// to the nearest neighbour (what the run's radius check proposes), with how it was found.
+std::pair<float, std::string> implied_radius(const fs::path& path, const FluidImport& import, const FluidFrame& frame) {
+  if (import.mantaflow && particle_format(path) == ParticleFormat::Vdb) {
+    VdbPointsInfo info;
+    read_vdb_points(path, import.read.vdb_grid, &info);
+    for (const VdbGridInfo& g : info.grids)
+      if (g.used && g.points && g.voxel_size > 0.0)
+        return {float(g.voxel_size / 4.0), str("a quarter of Mantaflow's cell, ", g.voxel_size, " m")};
+  }
+  // To 3 digits, as it is printed and would be given: on a lattice, cells of h = 2 spacings put
+  // particles on cell faces, where the last bit of h would move them from cell to cell.
+  char digits[32];
+  std::snprintf(digits, sizeof digits, "%.3g", 0.5 * double(median_spacing(frame.positions)));
+  return {float(std::strtod(digits, nullptr)), "half the median nearest-neighbour distance, to 3 digits"};
+}
+
+// Whether a fluid frame is a narrow band (MODEL.md §9.1), by the run's own test: on cells of h = 4 r
+// with the radius the file implies, flooded from above (spume's -y gravity, after the up axis "auto"
+// decides), a FLIP source as fluid.particles "auto" takes it. "" for files that are not fluid frames.
 std::string interior_line(const fs::path& path) {
   const ParticleFormat format = particle_format(path);
   if (format == ParticleFormat::DiffuseCache) return "";
   FluidFrame frame;
+  FluidImport import;
   try {
-    frame = read_fluid_file(path, resolve_fluid_import(path, "auto", "", std::nullopt, 0.0).read);
+    import = resolve_fluid_import(path, "auto", "", std::nullopt, 0.0);
+    frame = read_fluid_file(path, import.read);
   } catch (const Error&) {
     return "";  // spume's diffuse BGEO, or a file describe_particle_file already explained
   }
   if (frame.size() < 2) return "";
-  const float spacing = median_spacing(frame.positions);
-  if (!(spacing > 0.0f)) return "";
-  FluidStepState state;
-  state.positions = std::move(frame.positions);
-  state.velocities.assign(state.positions.size(), Vec3f::Zero());
-  state.motion = state.velocities;
-  state.masses.assign(state.positions.size(), 1.0f);
-  state.ids.assign(state.positions.size(), 0);
+  const auto [radius, how] = implied_radius(path, import, frame);
+  if (!(radius > 0.0f)) return "";
   InteriorFiller filler;
-  const InteriorFill fill = filler.fill(state, 2.0f * spacing, spacing, Vec3f(0.0f, -1.0f, 0.0f), nullptr);
-  if (fill.skipped) return "  interior: not tested (the particles spread over more than 16M cells of h)\n";
-  if (!fill.narrow_band)
-    return str("  interior: full (", fill.enclosed_cells, " enclosed empty cells of h = 2 x the ", spacing,
-               " m spacing beside ", fill.occupied_cells, " occupied)\n");
-  return str("  interior: a NARROW BAND: the particles (", spacing, " m apart) enclose ", fill.enclosed_cells,
-             " empty cells of h beside ", fill.occupied_cells, " occupied, as a FLIP cache that keeps particles only "
-             "near the surface; a run fills it for the classification and advection (fluid.narrow_band \"auto\", "
-             "MODEL.md §9.1)\n");
+  const InteriorFill fill = filler.examine(frame.positions, 4.0f * radius, Vec3f(0.0f, -1.0f, 0.0f), import.mantaflow);
+  std::string line = "  interior: " + describe_interior(fill);
+  if (fill.narrow_band) line += "; a run fills it for the classification and advection (fluid.narrow_band \"auto\")";
+  return line + str(" (h = 4 r with r = ", radius, " m, ", how, ", where a run uses its own h, 4 x fluid.radius by "
+                    "default; MODEL.md §9.1)\n");
 }
 
 int info(const cli::ParsedArgs& args) {

@@ -4,7 +4,9 @@
 #include <array>
 #include <cmath>
 
+#include "sim/core/error.h"
 #include "sim/core/parallel.h"
+#include "sim/grid/distance_transform.h"
 
 namespace spume {
 namespace {
@@ -24,32 +26,55 @@ struct Lattice {
   bool in(int64_t x, int64_t y, int64_t z) const {
     return x >= 0 && y >= 0 && z >= 0 && x < dims[0] && y < dims[1] && z < dims[2];
   }
+  bool padding(const std::array<int64_t, 3>& c) const {
+    for (int a = 0; a < 3; ++a)
+      if (c[a] == 0 || c[a] == dims[a] - 1) return true;
+    return false;
+  }
 };
 
 constexpr std::array<std::array<int, 3>, 6> kFaces = {{{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}}};
 
+float quantile(std::vector<float>& values, double q) {
+  const size_t k = std::min(values.size() - 1, size_t(q * double(values.size())));
+  std::nth_element(values.begin(), values.begin() + ptrdiff_t(k), values.end());
+  return values[k];
+}
+
 }  // namespace
 
-InteriorFill InteriorFiller::fill(FluidStepState& state, float cell, float spacing, const Vec3f& gravity,
-                                  const SolidSet* solids) {
-  InteriorFill result;
-  const size_t n = state.positions.size();
-  if (n == 0 || !(cell > 0.0f) || !(spacing > 0.0f)) return result;
-  spacing = std::min(spacing, cell);
+std::string describe_interior(const InteriorFill& f) {
+  const std::string cells = str(" cells of h = ", f.cell, " m");
+  if (f.skipped) return str("not tested (the particles spread over more than 16M cells of h = ", f.cell, " m)");
+  if (!f.large)
+    return str("full (", f.enclosed_cells, " enclosed empty", cells, " beside ", f.occupied_cells,
+               " occupied: below the ", 100.0 * kNarrowBandShare, "% of a narrow band)");
+  const std::string enclosed = str(f.enclosed_cells, " enclosed empty", cells, " beside ", f.occupied_cells, " occupied");
+  const std::string depth = str(f.depth_low, " to ", f.depth_high, " m under the surface (10th to 90th percentile of its edge)");
+  if (f.narrow_band)
+    return str("a NARROW BAND: ", enclosed, ", in a FLIP cache (fluid.particles = flip), which keeps particles only near "
+               "the surface; its edge lies ", depth);
+  return str("ENCLOSED, not filled: ", enclosed, ", whose edge lies ", depth, "; the cache is not known to be FLIP, so "
+             "this is taken as air (a pocket of it), not as the empty interior of a narrow band (set fluid.particles "
+             "to \"flip\" to fill it)");
+}
 
-  Vec3f lo = state.positions[0], hi = lo;
-  for (const Vec3f& p : state.positions) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-  const Vec3f origin = lo - Vec3f::Constant(cell);  // one empty layer of padding on every side
+bool InteriorFiller::flood(const std::vector<Vec3f>& positions, float cell, const Vec3f& gravity,
+                           const SolidSet* solids) {
+  const size_t n = positions.size();
+  Vec3f lo = positions[0], hi = lo;
+  for (const Vec3f& p : positions) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  origin_ = lo - Vec3f::Constant(cell);  // one empty layer of padding on every side
   Lattice g;
   double total = 1.0;
   for (int a = 0; a < 3; ++a) {
-    g.dims[a] = int64_t(std::floor((hi[a] - lo[a]) / cell)) + 3;
-    total *= double(g.dims[a]);
+    const double span = std::floor(double(hi[a] - lo[a]) / double(cell)) + 3.0;
+    if (!(span < double(kMaxCells))) return false;
+    g.dims[a] = int64_t(span);
+    total *= span;
   }
-  if (total > double(kMaxCells)) {
-    result.skipped = true;
-    return result;
-  }
+  if (total > double(kMaxCells)) return false;
+  dims_ = g.dims;
   const size_t cells = size_t(total);
 
   // Particles by cell (counting sort, in index order within a cell).
@@ -58,7 +83,7 @@ InteriorFill InteriorFiller::fill(FluidStepState& state, float cell, float spaci
     for (size_t i = b; i < e; ++i) {
       std::array<int64_t, 3> c;
       for (int a = 0; a < 3; ++a)
-        c[a] = std::clamp(int64_t(std::floor((state.positions[i][a] - origin[a]) / cell)), int64_t(1), g.dims[a] - 2);
+        c[a] = std::clamp(int64_t(std::floor((positions[i][a] - origin_[a]) / cell)), int64_t(1), g.dims[a] - 2);
       cell_of_[i] = uint32_t(g.index(c[0], c[1], c[2]));
     }
   });
@@ -86,18 +111,15 @@ InteriorFill InteriorFiller::fill(FluidStepState& state, float cell, float spaci
         continue;
       }
       const auto xyz = g.coords(c);
-      bool padding = false, top = false;
-      for (int a = 0; a < 3; ++a) {
-        const bool low = xyz[a] == 0, high = xyz[a] == g.dims[a] - 1;
-        padding |= low || high;
-        if (a == up_axis) top |= up_sign > 0 ? high : low;
-      }
+      const bool padding = g.padding(xyz);
+      bool top = false;
+      if (up_axis >= 0) top = up_sign > 0 ? xyz[up_axis] == g.dims[up_axis] - 1 : xyz[up_axis] == 0;
       if (padding && up_axis < 0) kind_[c] = Air;
       else if (top) kind_[c] = Air;
       else if (padding) kind_[c] = Blocked;
       else if (see_solids) {
         const Vec3f index_centre = Vec3f(float(xyz[0]), float(xyz[1]), float(xyz[2])) + Vec3f::Constant(0.5f);
-        const Vec3f centre = origin + index_centre * cell;
+        const Vec3f centre = origin_ + index_centre * cell;
         if (solids->inside(centre)) kind_[c] = Blocked;
       }
     }
@@ -116,13 +138,58 @@ InteriorFill InteriorFiller::fill(FluidStepState& state, float cell, float spaci
       if (kind_[nb] == Empty) kind_[nb] = Air, queue_.push_back(uint32_t(nb));
     }
   }
-  for (size_t c = 0; c < cells; ++c) {
-    result.occupied_cells += kind_[c] == Occupied;
-    if (kind_[c] == Empty) kind_[c] = Enclosed, ++result.enclosed_cells;
+  for (size_t c = 0; c < cells; ++c)
+    if (kind_[c] == Empty) kind_[c] = Enclosed;
+  return true;
+}
+
+InteriorFill InteriorFiller::examine(const std::vector<Vec3f>& positions, float cell, const Vec3f& gravity,
+                                     bool flip_source) {
+  InteriorFill result;
+  result.cell = cell, result.flip_source = flip_source;
+  if (positions.empty() || !(cell > 0.0f)) return result;
+  if (!flood(positions, cell, gravity, nullptr)) {
+    result.skipped = true;
+    return result;
   }
-  result.narrow_band = result.enclosed_cells >= kNarrowBandMinCells &&
-                       double(result.enclosed_cells) >= kNarrowBandShare * double(result.occupied_cells);
-  if (!result.narrow_band) return result;
+  for (const uint8_t k : kind_) result.occupied_cells += k == Occupied, result.enclosed_cells += k == Enclosed;
+  result.large = result.enclosed_cells >= kNarrowBandMinCells &&
+                 double(result.enclosed_cells) >= kNarrowBandShare * double(result.occupied_cells);
+  if (!result.large) return result;
+
+  // The depth of the enclosed interior's edge: from each occupied cell beside it to the nearest cell
+  // the air reaches or of the padding (the particles' bounds may be a surface too: a band along a side).
+  Lattice g;
+  g.dims = dims_;
+  std::vector<uint8_t> outside(kind_.size());
+  for (size_t c = 0; c < kind_.size(); ++c) outside[c] = kind_[c] == Air || g.padding(g.coords(c));
+  const std::vector<float> d2 = squared_distance_to_seeds(outside, dims_);
+  std::vector<float> depths;
+  for (size_t c = 0; c < kind_.size(); ++c) {
+    if (kind_[c] != Occupied) continue;
+    const auto xyz = g.coords(c);
+    for (const auto& f : kFaces)
+      if (kind_[g.index(xyz[0] + f[0], xyz[1] + f[1], xyz[2] + f[2])] == Enclosed) {
+        depths.push_back(std::sqrt(d2[c]) * cell);
+        break;
+      }
+  }
+  if (depths.empty()) return result;  // not reached: an enclosed cell borders an occupied one
+  result.depth_low = quantile(depths, 0.1);
+  result.depth_median = quantile(depths, 0.5);
+  result.depth_high = quantile(depths, 0.9);
+  result.narrow_band = flip_source;
+  return result;
+}
+
+size_t InteriorFiller::fill(FluidStepState& state, float cell, float spacing, const Vec3f& gravity,
+                            const SolidSet* solids) {
+  if (state.positions.empty() || !(cell > 0.0f) || !(spacing > 0.0f)) return 0;
+  spacing = std::min(spacing, cell);
+  if (!flood(state.positions, cell, gravity, solids)) return 0;
+  Lattice g;
+  g.dims = dims_;
+  const size_t cells = kind_.size();
 
   // Velocities: each occupied cell's mean, carried into the enclosed cells layer by layer (each
   // layer the mean of its 6-neighbours already set), so every filled cell gets the nearest water's.
@@ -184,6 +251,7 @@ InteriorFill InteriorFiller::fill(FluidStepState& state, float cell, float spaci
   const double ratio = double(cell) / double(spacing);
   auto first_point = [&](int64_t c) { return int64_t(std::ceil(double(c) * ratio - 0.5)); };
   const float spacing2 = 0.64f * spacing * spacing;
+  size_t filled = 0;
   for (size_t c = 0; c < cells; ++c) {
     const auto xyz = g.coords(c);
     bool candidate = kind_[c] == Extrapolated || kind_[c] == Enclosed;
@@ -198,7 +266,7 @@ InteriorFill InteriorFiller::fill(FluidStepState& state, float cell, float spaci
     for (int64_t k = first_point(xyz[2]); k < first_point(xyz[2] + 1); ++k)
       for (int64_t j = first_point(xyz[1]); j < first_point(xyz[1] + 1); ++j)
         for (int64_t i = first_point(xyz[0]); i < first_point(xyz[0] + 1); ++i) {
-          const Vec3f p = origin + Vec3f(float(i) + 0.5f, float(j) + 0.5f, float(k) + 0.5f) * spacing;
+          const Vec3f p = origin_ + Vec3f(float(i) + 0.5f, float(j) + 0.5f, float(k) + 0.5f) * spacing;
           bool near = false;
           for (int dz = -1; dz <= 1 && !near; ++dz)
             for (int dy = -1; dy <= 1 && !near; ++dy)
@@ -213,10 +281,10 @@ InteriorFill InteriorFiller::fill(FluidStepState& state, float cell, float spaci
           state.motion.push_back(cell_motion_[c]);
           state.masses.push_back(0.0f);
           state.ids.push_back(kFillerId);
-          ++result.filled;
+          ++filled;
         }
   }
-  return result;
+  return filled;
 }
 
 }  // namespace spume

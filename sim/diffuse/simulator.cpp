@@ -43,7 +43,7 @@ const SolidClearance& DiffuseSimulator::clearance_of(const SolidSet& solids, Sol
   return slot;
 }
 
-void DiffuseSimulator::prepare_fluid(double t) {
+void DiffuseSimulator::prepare_fluid(double t, bool frame_start) {
   StageTimer timer(pending_, Stage::Grid);  // fluid preparation, reported with the grid
   step_params_ = setup_.params;
   step_volume_ = particle_volume_;
@@ -55,12 +55,20 @@ void DiffuseSimulator::prepare_fluid(double t) {
     step_volume_ = particle_volume_ / ratio;
     pending_.density_ratio = ratio, pending_.full_count = m.full_count;
   }
-  if (setup_.fill_narrow_band) {
-    // Fill at the frame's own spacing; cells of h hold about 8 particles each in the water.
+  if (!setup_.fill_narrow_band) return;
+  // Decided once a frame, on the frame's particles as read (no solids) and on cells of h, as `spume
+  // info` decides on the file; the frame's steps are filled alike.
+  if (frame_start)
+    band_ = filler_.examine(state_.positions, setup_.fluid.support_radius, setup_.params.gravity,
+                            setup_.particles == FluidParticles::Flip);
+  if (band_.narrow_band) {
+    // Fill at the frame's own spacing (2r, or the measured one of a FLIP cache).
     const float spacing = 2.0f * setup_.fluid.particle_radius / std::cbrt(ratio);
     const SolidSet& solids = solids_at(t, classify_solids_);
-    pending_.interior = filler_.fill(state_, setup_.fluid.support_radius, spacing, setup_.params.gravity, &solids);
+    const size_t filled = filler_.fill(state_, band_.cell, spacing, setup_.params.gravity, &solids);
+    if (frame_start) band_.filled = filled;
   }
+  if (frame_start) pending_.interior = band_;
 }
 
 void DiffuseSimulator::classify(const FluidStepState& state, uint32_t step, bool sample_velocity, double t) {
@@ -230,7 +238,7 @@ FrameStats DiffuseSimulator::process_frame(const FluidFrame& a, const FluidFrame
 
   // Frame a's output: the particles where they are, classified against a's fluid.
   interpolate_fluid(pair, 0.0f, mass, state_);
-  prepare_fluid(a.time);
+  prepare_fluid(a.time, true);
   classify(state_, uint32_t(first_step), b != nullptr, a.time);
   particles_.index = a.index;
   particles_.time = a.time;
@@ -250,7 +258,7 @@ FrameStats DiffuseSimulator::process_frame(const FluidFrame& a, const FluidFrame
     if (s > 0) {
       interpolate_fluid(pair, float(s) / float(p.substeps), mass, state_);
       const double t = a.time + frame_dt * s / p.substeps;
-      prepare_fluid(t);
+      prepare_fluid(t, false);
       classify(state_, step_index, true, t);
     }
     step(state_, step_index, dt, s + 1 == p.substeps ? b->time : a.time + frame_dt * (s + 1) / p.substeps);

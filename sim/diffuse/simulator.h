@@ -77,8 +77,8 @@ class DiffuseSimulator {
   // dissolution, emission, compaction over [t, t + dt].
   void classify(const FluidStepState& state, uint32_t step, bool sample_velocity, double t);
   // After each interpolation: FLIP velocities and density (§9.2), the narrow band's fill (§9.1), and
-  // the parameters of this step.
-  void prepare_fluid(double t);
+  // the parameters of this step. `frame_start`: the state is a frame as read (the band is decided there).
+  void prepare_fluid(double t, bool frame_start);
   void step(const FluidStepState& state, uint32_t step, float dt, double t_end);
   // The solids at time t: the set as given when nothing moves, else a snapshot kept in `slot`.
   const SolidSet& solids_at(double t, SolidSet& slot) const;
@@ -105,6 +105,7 @@ class DiffuseSimulator {
   float particle_volume_;
   FlipFluid flip_;
   InteriorFiller filler_;
+  InteriorFill band_;            // the current frame's narrow-band test (§9.1)
   DiffuseParams step_params_;   // setup_.params, at the frame's density for a FLIP cache
   float step_volume_ = 0.0f;    // particle_volume_, likewise
 };

@@ -251,7 +251,7 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
   int unpaired_frames = 0;  // frames without ids whose particles could not be paired with the next's
   int band_frames = 0;      // frames found to be a narrow band and filled (MODEL.md §9.1)
   size_t most_filled = 0;
-  bool warned_band_skip = false;
+  bool warned_band_skip = false, warned_pocket = false;
   float least_density = 0.0f, most_density = 0.0f;  // fluid.particles = flip: the measured density ratios
   BackgroundWriter writer;
   for (size_t k = resume; k < frames.size(); ++k) {
@@ -295,11 +295,12 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
     if (stats.interior.narrow_band) {
       most_filled = std::max(most_filled, stats.interior.filled);
       if (++band_frames == 1)
-        progress.note(str("frame ", stats.frame, ": the fluid particles enclose an empty interior of ",
-                             stats.interior.enclosed_cells, " cells of h beside ", stats.interior.occupied_cells,
-                             " occupied (a narrow-band cache: FLIP keeps particles only near the surface); filled with ",
+        progress.note(str("frame ", stats.frame, "'s interior: ", describe_interior(stats.interior), "; filled with ",
                              stats.interior.filled, " massless particles for classification and advection "
                              "(MODEL.md §9.1; fluid.narrow_band = off leaves it empty)"));
+    } else if (stats.interior.large && !warned_pocket) {
+      progress.note(str("note: frame ", stats.frame, "'s interior: ", describe_interior(stats.interior), " (MODEL.md §9.1)"));
+      warned_pocket = true;
     }
     if (stats.interior.skipped && !warned_band_skip) {
       progress.note(str("note: frame ", stats.frame, "'s particles spread over more than 16M cells of h; "

@@ -60,7 +60,7 @@ TEST(MantaflowCache, SimulateRunsOverTwoRealFramesAndSaysWhatItConverted) {
   EXPECT_TRUE(contains(r.output, "velocities: x 0.078125 to m/s")) << r.output;
   EXPECT_TRUE(contains(r.output, "particles: flip (fluid.particles \"auto\"")) << r.output;
   EXPECT_TRUE(contains(r.output, "fluid.particles = flip: velocities averaged")) << r.output;
-  EXPECT_TRUE(contains(r.output, "a narrow-band cache")) << r.output;
+  EXPECT_TRUE(contains(r.output, "frame 1's interior: a NARROW BAND")) << r.output;
   // Asked to take them as SPH particles, it does, and the run's caches are made again.
   const CommandResult sph = run_spume("simulate --fluid 'data/fluid_data_%04d.vdb' --radius 0.0078 --fps 24 --out out "
                                       "--set fluid.particles=sph",
