@@ -1,6 +1,7 @@
 #pragma once
 // How fluid files are read beyond their format: which axis the cache calls up (spume's world is
-// Y-up: gravity, tanks, the renderer's sky and ground) and, for OpenVDB, which point grid to read.
+// Y-up: gravity, tanks, the renderer's sky and ground), for OpenVDB, which point grid to read, and
+// whether stored masses are kept.
 #include <string>
 
 #include "sim/core/frames.h"
@@ -12,6 +13,7 @@ enum class UpAxis { Y, Z };
 struct FluidReadOptions {
   UpAxis up = UpAxis::Y;  // Z: the cache is Z-up (Blender) and is turned to Y-up as it is read
   std::string vdb_grid;   // "": every point data grid of a .vdb; else the one of this name
+  bool stored_masses = true;  // false: masses are dropped as read (far from rho0 (2r)^3: io/stored_mass_check.h)
   bool operator==(const FluidReadOptions&) const = default;
 };
 

@@ -112,6 +112,11 @@ std::optional<MantaflowVelocityUnits> mantaflow_velocity_units(const std::filesy
     const double length = double(*c.time_total - *o.time_total) / double(frame - other);
     if (length > 0.0 && std::isfinite(length)) frame_length = length, neighbour = p.filename().string();
   }
+  if (frame_length) {
+    units.frame_rate = kTimeUnitsPerSecond / *frame_length;
+    units.frame_length_how = str(*frame_length, " Mantaflow time units a frame (time_total of ", path->filename().string(),
+                                 " and ", neighbour, ")");
+  }
   const bool fps_implied = fps <= 0.0;
   if (fps_implied) fps = frame_length ? kTimeUnitsPerSecond / *frame_length : 24.0;
   units.fps = fps;

@@ -37,6 +37,10 @@ MantaflowConfig read_mantaflow_config(const std::filesystem::path& file);
 struct MantaflowVelocityUnits {
   float factor = 1.0f;  // stored velocity x factor = m/s
   double fps = 0.0;     // the frame rate used
+  // The frames per second of simulated time the measured frame length means (Blender: 2.5 Mantaflow
+  // time units a second, whatever the bake's time scale); nullopt when no neighbouring config measures it.
+  std::optional<double> frame_rate;
+  std::string frame_length_how;  // how that frame length was measured, for messages
   std::string how;      // where the factor came from, for the log and `spume info`
 };
 

@@ -211,6 +211,7 @@ FluidFrame read_fluid_file(const std::filesystem::path& path, const FluidReadOpt
   require_file(path);
   FluidFrame frame = read_as_stored(path, options);
   to_y_up(frame, options.up);
+  if (!options.stored_masses) frame.masses.clear();
   return frame;
 }
 

@@ -77,6 +77,11 @@ SceneInputs read_scene_inputs(const SimScene& scene, const std::filesystem::path
     const VelocityCheck velocities = check_stored_velocities(in.survey, scene.fluid.fps, scene.fluid.particle_radius,
                                                              scene.velocity_scale, scene.gravity);
     if (!velocities.note.empty()) in.notes.push_back(velocities.note);
+    // A doubt about the units (Mantaflow's names without its config) is settled by that measurement.
+    if (!scene.velocity_units_doubt.empty())
+      in.notes.push_back(velocities.agrees ? "velocities: used as stored (no Mantaflow config to convert them, and the "
+                                             "check above finds them right)"
+                                           : scene.velocity_units_doubt);
   }
   in.solids = scene.solids;
   if (!solver) {

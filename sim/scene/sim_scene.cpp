@@ -43,6 +43,32 @@ bool reads_vdb_grids(const std::string& file_pattern) {
   return io::ends_with(io::lower_file_name(std::filesystem::path(file_pattern)), ".vdb");
 }
 
+// The axis, the units, the frame rate and the masses are decided from the first frames (a Mantaflow
+// config beside them, or what they show), within fluid.frames when it is given.
+FluidImportRequest import_request(const ParamReader& fluid, const SimScene& scene) {
+  namespace k = keys;
+  FluidImportRequest request;
+  if (fluid.has(k::fluid::velocity_scale.name())) request.velocity_scale = scene.velocity_scale;
+  if (fluid.has(k::fluid::fps.name())) request.fps = scene.fluid.fps;
+  request.default_fps = scene.fluid.fps;
+  request.up_choice = fluid.choice(k::fluid::up_axis);
+  request.vdb_grid = fluid.text(k::fluid::vdb_grid.name(), "");
+  request.particle_radius = scene.fluid.particle_radius;
+  request.rest_density = scene.fluid.rest_density;
+  if (is_frame_pattern(scene.file_pattern)) {
+    std::optional<std::pair<double, double>> range;
+    if (fluid.has(k::fluid::frames.name())) range = fluid.range(k::fluid::frames);
+    for (const int f : find_pattern_frames(scene.file_pattern))
+      if (!range || (f >= range->first && f <= range->second))
+        request.files.push_back(expand_frame_pattern(scene.file_pattern, f)), request.frames.push_back(f);
+  }
+  if (request.files.empty()) {  // nothing to measure: the survey says what is missing
+    request.files = {scene.file_pattern}, request.frames.clear();
+    request.particle_radius = 0.0f;
+  }
+  return request;
+}
+
 }  // namespace
 
 SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& scene_dir,
@@ -72,16 +98,9 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
     scene.file_pattern = pattern.is_absolute() ? pattern.string() : (scene_dir / pattern).lexically_normal().string();
     scene.allow_gaps = fluid.boolean(k::fluid::allow_gaps);
     scene.velocity_scale = float(fluid.number(k::fluid::velocity_scale));
-    // The axis and the units are decided from the first file (a Mantaflow config beside it).
-    std::optional<float> given_scale;
-    if (fluid.has(k::fluid::velocity_scale.name())) given_scale = scene.velocity_scale;
-    std::filesystem::path first = scene.file_pattern;
-    if (is_frame_pattern(scene.file_pattern))
-      if (const std::vector<int> found = find_pattern_frames(scene.file_pattern); !found.empty())
-        first = expand_frame_pattern(scene.file_pattern, found.front());
-    const FluidImport import = resolve_fluid_import(first, fluid.choice(k::fluid::up_axis),
-                                                    fluid.text(k::fluid::vdb_grid.name(), ""), given_scale,
-                                                    scene.fluid.fps);
+    const FluidImport import = resolve_fluid_import(import_request(fluid, scene));
+    if (import.fps) scene.fluid.fps = *import.fps;
+    scene.velocity_units_doubt = import.velocity_units_doubt;
     scene.read = import.read;
     if (!reads_vdb_grids(scene.file_pattern)) {
       if (fluid.has(k::fluid::vdb_grid.name()))
@@ -141,8 +160,12 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
   }
   Json keys = {{"gravity", root.effective("gravity")}, {"fluid", fluid_keys}, {"solids", root.effective("solids")}};
   // What "auto" and a Mantaflow config decided shapes the frames as much as the keys do.
-  if (scene.read.up != UpAxis::Y || scene.velocity_scale != float(fluid.number(k::fluid::velocity_scale)))
+  if (scene.read.up != UpAxis::Y || scene.velocity_scale != float(fluid.number(k::fluid::velocity_scale)) ||
+      !scene.read.stored_masses || scene.fluid.fps != fluid.number(k::fluid::fps)) {
     keys["fluid_import"] = {{"up_axis", up_axis_name(scene.read.up)}, {"velocity_scale", scene.velocity_scale}};
+    if (!scene.read.stored_masses) keys["fluid_import"]["masses"] = "implied";
+    if (scene.fluid.fps != fluid.number(k::fluid::fps)) keys["fluid_import"]["fps"] = scene.fluid.fps;
+  }
   keys["output"] = {{"fluid_bgeo", scene.write_fluid_bgeo}};  // what the fluid stage writes
   scene.fluid_keys = with_generation(keys);
   keys["diffuse"] = root.effective("diffuse");

@@ -33,6 +33,7 @@ struct SimScene {
   bool fill_narrow_band = true;         // fluid.narrow_band = auto (MODEL.md §9.1)
   FluidReadOptions read;                // Files: the up axis, the VDB grid (io/fluid_import.h)
   std::vector<std::string> import_notes;  // what was decided about the name and (files) the axis and units, and why
+  std::string velocity_units_doubt;     // Files: said unless the velocity check finds them right (io/fluid_import.h)
   FluidSequenceInfo fluid;
   std::optional<std::pair<int, int>> frames;  // inclusive frame range to use, if limited
   Vec3f gravity = Vec3f(0.0f, -9.81f, 0.0f);  // m/s^2

@@ -18,13 +18,20 @@ struct VelocityCheck {
   bool by_ids = false;       // the count changed too often for the centroid: measured on particles tracked by id
   bool by_extremes = false;  // the count changed too often for the centroid: measured at the fluid's extremes
   float ratio = NAN;   // median of stored / motion over them (NaN when none could be compared)
+  bool agrees = false; // the ratio lies within [2/3, 3/2]
   std::string note;    // for the log: a warning when they disagree, else what was found ("" if nothing)
 };
 
 // Compares, for each interval between surveyed frames whose counts differ by under 0.1% and whose
 // centroid moved at least r/10, the mean of the two frames' mean stored velocities (times
 // `velocity_scale`) projected on the centroid's motion (displacement x fps / frames apart). The
-// velocities and the motion agree when the median ratio lies within [2/3, 3/2]; 3 intervals at least.
+// velocities and the motion agree when the median ratio lies within [2/3, 3/2]; 3 intervals at least,
+// in a sequence whose count holds over at least half its intervals (where it changes in most, a FLIP
+// cache reseeding, the intervals where it happens to hold were reseeded too).
+//
+// A median that is zero, negative or beyond 1e4 either way advises nothing: all zero is said as such;
+// the others say the measure failed (no unit and no frame rate make velocities point against the
+// motion). Advice stays within the keys' ranges.
 //
 // With fewer such intervals and ids in the files, the particles tracked by id (FrameSurvey::tracked)
 // are compared one by one where they moved at least r between consecutive frames: the mean of the two

@@ -194,5 +194,52 @@ TEST(VelocityCheck, ATopThatRisesWhileItsParticlesFallIsNotTrusted) {
   EXPECT_NE(c.note.find("% of them (66.6667% needed)"), std::string::npos) << c.note;
 }
 
+// Issue 44, case 2. A FLIP cache reseeds: its count changes in most intervals, and where it happens
+// to hold, particles were still removed and added, only as many. Here the count changes by 1% in 6 of
+// 10 intervals and holds in 4, where the centroid jumps 20 cm up (reseeding) while every particle falls:
+// on all 4 the centroid reads stored / moved < 0 (it falls at most 12 cm in one). They are not used: the count holds in under half the
+// intervals, so the centroid measures nothing, and nothing negative is advised.
+TEST(VelocityCheck, AReseedingCacheWhoseCountHoldsOnAFewIntervalsIsNotMeasuredByItsCentroid) {
+  FluidSurvey survey = falling_block(1.0f);
+  uint64_t n = 1000;
+  for (FrameSurvey& f : survey.frames) {
+    const int k = f.frame;
+    const bool holds = k == 2 || k == 4 || k == 6 || k == 8;  // intervals 1-2, 3-4, 5-6, 7-8
+    if (!holds && k > 0) n += 10;
+    f.particles = n;
+    if (holds) f.centroid.y() += 0.2f;
+  }
+  // On each of the 4 the centroid moves up while the velocities point down: the old check's median was < 0.
+  for (int k : {2, 4, 6, 8})
+    ASSERT_LT((survey.frames[k].centroid - survey.frames[k - 1].centroid).dot(survey.frames[k].mean_velocity), 0.0f);
+  const VelocityCheck c = check_stored_velocities(survey, kFps, kRadius, 1.0f);
+  EXPECT_EQ(c.intervals, 0);
+  EXPECT_TRUE(std::isnan(c.ratio));
+  EXPECT_EQ(c.note.rfind("stored velocities not checked against the motion: 0 frame intervals", 0), 0u) << c.note;
+  EXPECT_NE(c.note.find("4 of 10"), std::string::npos) << c.note;
+  EXPECT_EQ(c.note.find("= -"), std::string::npos) << c.note;
+  EXPECT_EQ(c.note.find("to -"), std::string::npos) << c.note;
+}
+
+// Velocities pointing against the motion (a steady count: the centroid is measured, ratio -1 by hand):
+// no unit and no frame rate explain that; nothing is advised.
+TEST(VelocityCheck, VelocitiesAgainstTheMotionAdviseNothing) {
+  const VelocityCheck c = check_stored_velocities(falling_block(-1.0f), kFps, kRadius, 1.0f);
+  EXPECT_TRUE(std::isnan(c.ratio));
+  EXPECT_EQ(c.note.rfind("stored velocities not checked against the motion: they came out -1 times", 0), 0u) << c.note;
+  EXPECT_NE(c.note.find("pointing against the motion"), std::string::npos) << c.note;
+  EXPECT_EQ(c.note.find("set fluid"), std::string::npos) << c.note;
+}
+
+// Stored velocities all zero while the block falls: ratio 0, which would advise a scale of 1 / 0 and a
+// frame rate of 0. The warning says they are zero and advises neither.
+TEST(VelocityCheck, ZeroVelocitiesAreSaidAndNoInfiniteOrZeroAdviceIsGiven) {
+  const VelocityCheck c = check_stored_velocities(falling_block(0.0f), kFps, kRadius, 1.0f);
+  EXPECT_TRUE(std::isnan(c.ratio));
+  EXPECT_EQ(c.note.rfind("warning: the stored velocities are zero where the fluid moves", 0), 0u) << c.note;
+  EXPECT_EQ(c.note.find("inf"), std::string::npos) << c.note;
+  EXPECT_EQ(c.note.find("set fluid"), std::string::npos) << c.note;
+}
+
 }  // namespace
 }  // namespace spume

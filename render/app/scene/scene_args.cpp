@@ -88,8 +88,9 @@ SceneSetup load_scene_setup(const cli::ParsedArgs& args, const std::vector<std::
       Json scene = {{"fluid",
                      {{"source", "files"},
                       {"files", *args.value("fluid")},
-                      {"radius", cli::parse_double(*args.value("radius"), "--radius")},
-                      {"fps", args.has("fps") ? cli::parse_double(*args.value("fps"), "--fps") : keys::fluid::fps.value[0]}}}};
+                      {"radius", cli::parse_double(*args.value("radius"), "--radius")}}}};
+      // Without --fps the key is absent, so a cache that measures its own rate (a Mantaflow config) gives it.
+      if (args.has("fps")) scene["fluid"]["fps"] = cli::parse_double(*args.value("fps"), "--fps");
       if (auto tank = args.value("tank")) {
         const TankOption option = tank_from_option(*tank);
         if (option.kind != TankOption::Kind::None) scene["solids"] = Json::array({option.solid});
