@@ -5,11 +5,15 @@
 #include <cstdio>
 #include <exception>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "render/app/commands.h"
+#include "render/app/startup_guard.h"
 #include "sim/core/error.h"
 #include "sim/core/messages.h"
+#include "sim/core/out_of_memory.h"
+#include "sim/core/thread_budget.h"
 #include "sim/core/params.h"
 #include "render/app/version_info.h"
 
@@ -81,6 +85,17 @@ int run(const Command& command, const std::vector<std::string>& args) {
   } catch (const Error& e) {
     std::fprintf(stderr, "spume %s: error: %s\n", name, e.what());
     return cli::kExitError;
+  } catch (const std::bad_alloc&) {  // one the reading and frame boundaries did not put a name to
+    std::fprintf(stderr, "spume %s: error: %s\n", name, out_of_memory_message("").c_str());
+    return cli::kExitError;
+  } catch (const std::system_error& e) {
+    if (e.code() != std::errc::resource_unavailable_try_again) {
+      std::fprintf(stderr, "spume %s: internal error: %s\n", name, e.what());
+      return cli::kExitInternal;
+    }
+    std::fprintf(stderr, "spume %s: error: could not start a thread (%s)%s\n", name, e.what(),
+                 memory_situation().c_str());
+    return cli::kExitError;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "spume %s: internal error: %s\n", name, e.what());
     return cli::kExitInternal;
@@ -130,4 +145,8 @@ int dispatch(const std::vector<std::string>& argv) {
 }  // namespace
 }  // namespace spume
 
-int main(int argc, char** argv) { return spume::dispatch({argv + 1, argv + argc}); }
+int main(int argc, char** argv) {
+  spume::end_startup_guard();
+  spume::limit_threads_to_address_space();
+  return spume::dispatch({argv + 1, argv + argc});
+}

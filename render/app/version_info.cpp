@@ -25,7 +25,11 @@ constexpr const char* kCompiler =
 // The Mesa that is loaded now (the shared library may differ from the headers built against).
 std::string mesa_line() {
   try {
-    const OsmesaContext context(1, 1);
+    // No rasteriser threads: the version query draws nothing, and llvmpipe crashes when the threads it
+    // would start cannot (a small address space, ulimit -v).
+    OsmesaOptions options;
+    options.llvmpipe_threads = 0;
+    const OsmesaContext context(1, 1, options);
     return str("Mesa:    ", context.version(), "; ", context.renderer());
   } catch (const Error& e) {
     return str("Mesa:    no OpenGL context (", e.what(), ")");

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "sim/core/error.h"
+#include "sim/core/out_of_memory.h"
 #include "sim/core/frame_spec.h"
 #include "sim/core/huge_pages.h"
 #include "sim/core/parallel.h"
@@ -124,23 +125,25 @@ FrameInputs LoadedFrame::inputs() const {
 
 LoadedFrame load_frame(PreparedRender& p, int f) {
   return with_context(str("frame ", f), [&] {
-    LoadedFrame frame;
-    frame.index = f;
-    frame.time = double(f) / p.scene->fps;
-    if (p.settings.draw_surface) frame.fluid = p.scene->fluid->load(f);
-    if (p.settings.draws_diffuse()) {
-      const auto cache = diffuse_cache_path(p.scene->scene_out, f);
-      if (!std::filesystem::is_regular_file(cache))
-        fail(cache.string(), ": no diffuse cache for this frame; run `spume simulate` (or `spume run`) first");
-      frame.diffuse = read_diffuse_points(cache);
-      frame.has_diffuse = true;
-    }
-    if (p.settings.draw_solids) {
-      Camera camera = camera_at(p.settings.camera, frame.time, p.settings.width, p.settings.height);
-      frame.solids = solid_meshes(solids_at_time(p.scene->solids, p.scene->bodies, frame.time), camera.position,
-                                  p.settings.environment.sun_direction);
-    }
-    return frame;
+    return allocating("loading the frame", 0, [&] {
+      LoadedFrame frame;
+      frame.index = f;
+      frame.time = double(f) / p.scene->fps;
+      if (p.settings.draw_surface) frame.fluid = p.scene->fluid->load(f);
+      if (p.settings.draws_diffuse()) {
+        const auto cache = diffuse_cache_path(p.scene->scene_out, f);
+        if (!std::filesystem::is_regular_file(cache))
+          fail(cache.string(), ": no diffuse cache for this frame; run `spume simulate` (or `spume run`) first");
+        frame.diffuse = read_diffuse_points(cache);
+        frame.has_diffuse = true;
+      }
+      if (p.settings.draw_solids) {
+        Camera camera = camera_at(p.settings.camera, frame.time, p.settings.width, p.settings.height);
+        frame.solids = solid_meshes(solids_at_time(p.scene->solids, p.scene->bodies, frame.time), camera.position,
+                                    p.settings.environment.sun_direction);
+      }
+      return frame;
+    });
   });
 }
 
@@ -200,7 +203,9 @@ RenderStageSummary run_render_stage(PreparedRender& prepared, const nlohmann::js
       while (next < frames.size() && !needs_drawing(next)) ++next;
       if (next < frames.size()) loads.start(frames[next]);
       FrameReport report;
-      ImageRGB8 image = with_context(str("frame ", f), [&] { return renderer.render(taken.frame.inputs(), &report); });
+      ImageRGB8 image = with_context(str("frame ", f), [&] {
+        return allocating("rendering", 0, [&] { return renderer.render(taken.frame.inputs(), &report); });
+      });
       finish_png();
       // The frame's time on this thread: waiting for its load, then drawing it.
       const double frame_seconds = frame_start.seconds();

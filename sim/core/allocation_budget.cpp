@@ -4,6 +4,7 @@
 #include <new>
 
 #include "sim/core/huge_pages.h"
+#include "sim/core/out_of_memory.h"
 
 namespace spume {
 namespace {
@@ -40,7 +41,10 @@ void* operator new(std::size_t n) {
       return p;
     }
     std::new_handler handler = std::get_new_handler();
-    if (!handler) throw std::bad_alloc();
+    if (!handler) {
+      spume::record_failed_allocation(n);  // so the message can say how much was asked for
+      throw std::bad_alloc();
+    }
     handler();
   }
 }

@@ -45,8 +45,10 @@ void FluidFrame::validate(const std::string& where) const {
            "); positions must be finite numbers");
     if (!velocities.empty() && !finite(velocities[i]))
       fail(where, ": particle ", i, " (id ", id(i), ") has a non-finite velocity (", velocities[i].transpose(), ")");
-    if (!masses.empty() && !(std::isfinite(masses[i]) && masses[i] > 0.0f))
-      fail(where, ": particle ", i, " (id ", id(i), ") has mass ", masses[i], "; masses must be finite and > 0");
+    // A mass of 0 or less (Houdini's -1: not set) is kept as the file holds it: `info` shows it, and the
+    // diffuse simulation weighs such a particle with the uniform mass (core/unusable_masses.h).
+    if (!masses.empty() && !std::isfinite(masses[i]))
+      fail(where, ": particle ", i, " (id ", id(i), ") has mass ", masses[i], "; masses must be finite numbers");
   }
   if (!ids.empty()) {
     std::vector<uint32_t> sorted(ids);

@@ -6,6 +6,7 @@
 #include "sim/core/error.h"
 #include "sim/core/frame_order.h"
 #include "sim/core/parallel.h"
+#include "sim/core/unusable_masses.h"
 
 namespace spume {
 FramePair pair_frames(const FluidFrame& current, const FluidFrame* next, double frame_dt) {
@@ -72,7 +73,7 @@ void interpolate_fluid(const FramePair& pair, float s, float uniform_mass, Fluid
         out.motion[i] = va;
         out.velocities[i] = va;
       }
-      out.masses[i] = a.masses.empty() ? uniform_mass : a.masses[i];
+      out.masses[i] = a.masses.empty() || !usable_mass(a.masses[i]) ? uniform_mass : a.masses[i];
       out.ids[i] = a.id(i);
     }
   });

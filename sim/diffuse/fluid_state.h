@@ -38,7 +38,8 @@ struct FluidStepState {
 
 // State at fraction s in [0, 1) of the interval between the pair's frames. Particles with no match in
 // the next frame move with their own velocity; without velocity attributes, velocities are frame
-// differences, and a particle with neither has zero velocity.
+// differences, and a particle with neither has zero velocity. A particle without a usable mass (none in
+// the file, or one of 0 or less: core/unusable_masses.h) takes `uniform_mass`.
 void interpolate_fluid(const FramePair& pair, float s, float uniform_mass, FluidStepState& out);
 
 }  // namespace spume

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "sim/core/error.h"
+#include "sim/core/out_of_memory.h"
 #include "sim/core/parallel.h"
 #include "sim/core/stopwatch.h"
 #include "sim/diffuse/advection.h"
@@ -223,6 +224,12 @@ void DiffuseSimulator::step(const FluidStepState& state, uint32_t step, float dt
 
 FrameStats DiffuseSimulator::process_frame(const FluidFrame& a, const FluidFrame* b,
                                            const std::function<void(const DiffuseFrame&, const FrameStats&)>& ready) {
+  return allocating(str("simulating ", a.size(), " fluid and ", particles_.size(), " diffuse particles"), 0,
+                    [&] { return simulate_frame(a, b, ready); });
+}
+
+FrameStats DiffuseSimulator::simulate_frame(const FluidFrame& a, const FluidFrame* b,
+                                            const std::function<void(const DiffuseFrame&, const FrameStats&)>& ready) {
   const DiffuseParams& p = setup_.params;
   if (a.index < 0) fail("frame ", a.index, ": frame numbers must be >= 0");
   const uint64_t first_step = uint64_t(a.index) * uint64_t(p.substeps);
@@ -246,6 +253,7 @@ FrameStats DiffuseSimulator::process_frame(const FluidFrame& a, const FluidFrame
   pending_.fluid = a.size();
   pending_.by_type = particles_.count_by_type();
   pending_.unpaired_because = pair.unpaired_because;
+  pending_.unusable_masses = unusable_masses(a.masses);
   ready(particles_, pending_);
   const FrameStats done = pending_;
   pending_ = FrameStats{};

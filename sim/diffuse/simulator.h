@@ -9,6 +9,7 @@
 #include <functional>
 
 #include "sim/core/frames.h"
+#include "sim/core/unusable_masses.h"
 #include "sim/diffuse/emission.h"
 #include "sim/diffuse/fluid_sampling.h"
 #include "sim/diffuse/flip_fluid.h"
@@ -41,6 +42,7 @@ struct FrameStats {
   InteriorFill interior;         // this frame's narrow-band test and fill (MODEL.md §9.1)
   float density_ratio = 1.0f;    // fluid.particles = flip: this frame's particle density / the nominal (§9.2)
   float full_count = 0.0f;       // ... the count of a full neighbourhood it was measured from
+  UnusableMasses unusable_masses;  // masses of 0 or less in the fluid frame, weighed with the uniform mass
 };
 
 // What the cached particles are (fluid.particles).
@@ -62,7 +64,8 @@ class DiffuseSimulator {
 
   // Classifies the diffuse particles against fluid frame `a` and hands them to `frame_ready` (frame a's
   // output: positions at a's time, types from a's fluid), then steps them to the time of `b`. With
-  // b == nullptr (the last frame) it only classifies. Returns frame a's statistics.
+  // b == nullptr (the last frame) it only classifies. Returns frame a's statistics. Running out of
+  // memory is an Error saying how many particles it was simulating.
   FrameStats process_frame(const FluidFrame& a, const FluidFrame* b,
                            const std::function<void(const DiffuseFrame&, const FrameStats&)>& frame_ready);
 
@@ -72,6 +75,9 @@ class DiffuseSimulator {
   const DiffuseSetup& setup() const { return setup_; }
 
  private:
+  // process_frame's work; process_frame says what it was doing when memory ran out.
+  FrameStats simulate_frame(const FluidFrame& a, const FluidFrame* b,
+                            const std::function<void(const DiffuseFrame&, const FrameStats&)>& frame_ready);
   // classify(): grid over the fluid at t, neighbour counts and fluid velocities at every diffuse
   // particle, types (with the solids as they stand at t). step(): advection, solids at t + dt,
   // dissolution, emission, compaction over [t, t + dt].

@@ -28,9 +28,19 @@ struct Bytes {
   size_t chunks = 0;
 };
 
+// Houdini's binary JSON starts with 0x7f and "NSJb" (or "bJSN", byte-swapped).
+bool has_binary_json_magic(std::string_view h) {
+  return h.size() >= 5 && uint8_t(h[0]) == 0x7f && (h.substr(1, 4) == "NSJb" || h.substr(1, 4) == "bJSN");
+}
+
 // The binary JSON of a file, whatever holds it.
 Bytes json_bytes(const std::filesystem::path& path) {
   const std::string where = path.string();
+  // A .bgeo.sc that is not one is refused on its first bytes, before the file is read.
+  const std::string head = io::read_file_head(path, 5);
+  if (!has_scf_magic(head) && !io::has_gzip_magic(head) && !has_binary_json_magic(head) &&
+      io::lower_file_name(path).ends_with(".bgeo.sc"))
+    decompress_scf(head, where);  // says what a .bgeo.sc should start with
   std::string file = io::read_file_bytes(path);
   Bytes b;
   if (has_scf_magic(file)) {
@@ -41,8 +51,6 @@ Bytes json_bytes(const std::filesystem::path& path) {
   } else if (io::has_gzip_magic(file)) {
     b.json = io::gunzip(file, where);
     b.container = "gzip";
-  } else if (io::lower_file_name(path).ends_with(".bgeo.sc") && !(file.size() > 0 && uint8_t(file[0]) == 0x7f)) {
-    decompress_scf(file, where);  // says what a .bgeo.sc should start with
   } else {
     b.json = std::move(file);
   }
@@ -160,12 +168,11 @@ bool is_houdini_geometry(const std::filesystem::path& path) {
   char head[5] = {};
   if (!in.read(head, 5)) return false;
   const std::string_view h(head, 5);
-  if (h.substr(0, 4) == "scf1" || (uint8_t(h[0]) == 0x7f && (h.substr(1) == "NSJb" || h.substr(1) == "bJSN"))) return true;
+  if (has_scf_magic(h) || has_binary_json_magic(h)) return true;
   if (!io::has_gzip_magic(h)) return false;
   try {
     io::PrefixReader gz(path);
-    const std::string_view first = gz.first(5);
-    return first.size() == 5 && uint8_t(first[0]) == 0x7f && (first.substr(1) == "NSJb" || first.substr(1) == "bJSN");
+    return has_binary_json_magic(gz.first(5));
   } catch (const Error&) {
     return false;  // a corrupt gzip stream: the classic reader says what is wrong with it
   }

@@ -19,9 +19,9 @@ struct ScfStats {
 bool has_scf_magic(std::string_view file);
 
 // The decompressed bytes. Every chunk header is checked before anything is decompressed: it must lie
-// inside the file, and all chunks together may declare no more than 1032 bytes per byte of the file
-// (Houdini's LZ4 chunks stay far below; deflate's bound); each chunk then decompresses to exactly what its
-// header declares. `where` names the file in errors.
+// inside the file, and claim no more than its codec can code in its bytes (LZ4, Houdini's: 256 to 1;
+// the real files hold under 4 to 1). The output grows chunk by chunk, and each chunk must decompress to
+// exactly what its header declares. `where` names the file in errors.
 std::string decompress_scf(std::string_view file, const std::string& where, ScfStats* stats = nullptr);
 
 }  // namespace spume

@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "sim/core/out_of_memory.h"
+
 namespace spume {
 namespace {
 
@@ -114,7 +116,10 @@ void* scratch_take(size_t bytes, size_t& block_bytes, BlockWrites writes) {
     munmap(grow.block, grow.bytes);
   }
   void* block = map_block(want);
-  if (!block) throw std::bad_alloc();
+  if (!block) {
+    record_failed_allocation(want);
+    throw std::bad_alloc();
+  }
   block_bytes = want;
   return block;
 }

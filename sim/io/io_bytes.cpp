@@ -11,9 +11,14 @@
 #include <new>
 #include <system_error>
 
+#include "sim/core/out_of_memory.h"
+
 namespace spume::io {
 
-std::string read_file_bytes(const std::filesystem::path& path) {
+namespace {
+
+// Up to `limit` bytes from the start of the file.
+std::string read_prefix(const std::filesystem::path& path, uint64_t limit) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) fail(path.string(), ": no such file");
   if (std::filesystem::is_directory(path, ec)) fail(path.string(), ": is a directory, expected a particle file");
@@ -23,16 +28,25 @@ std::string read_file_bytes(const std::filesystem::path& path) {
   const std::streamoff size = in.tellg();
   if (size < 0) fail(path.string(), ": cannot determine file size");
   in.seekg(0, std::ios::beg);
-  std::string bytes(size_t(size), '\0');
-  if (size > 0 && !in.read(bytes.data(), size)) fail(path.string(), ": read failed");
+  const uint64_t n = std::min<uint64_t>(uint64_t(size), limit);
+  std::string bytes = allocating(str("reading ", path.string()), n, [&] { return std::string(size_t(n), '\0'); });
+  if (n > 0 && !in.read(bytes.data(), std::streamsize(n))) fail(path.string(), ": read failed");
   return bytes;
 }
+
+}  // namespace
+
+std::string read_file_bytes(const std::filesystem::path& path) { return read_prefix(path, UINT64_MAX); }
+
+std::string read_file_head(const std::filesystem::path& path, size_t n) { return read_prefix(path, n); }
 
 bool has_gzip_magic(std::string_view data) {
   return data.size() >= 2 && uint8_t(data[0]) == 0x1f && uint8_t(data[1]) == 0x8b;
 }
 
-std::string gunzip(std::string_view data, const std::string& where) {
+namespace {
+
+std::string gunzip_in_memory(std::string_view data, const std::string& where) {
   std::string out;
   // Deflate cannot exceed about 1032:1, so the trailer's size hint is trusted only up to that bound.
   if (data.size() >= 18) {
@@ -74,6 +88,12 @@ std::string gunzip(std::string_view data, const std::string& where) {
   return out;
 }
 
+}  // namespace
+
+std::string gunzip(std::string_view data, const std::string& where) {
+  return allocating(str("inflating ", where), 0, [&] { return gunzip_in_memory(data, where); });
+}
+
 struct PrefixReader::Inflater {
   z_stream zs{};
   std::string input = std::string(size_t(1) << 16, '\0');
@@ -108,7 +128,8 @@ PrefixReader::PrefixReader(const std::filesystem::path& path) : where_(path.stri
 PrefixReader::~PrefixReader() = default;
 
 std::string_view PrefixReader::first(size_t n) {
-  if (out_.size() < n && !ended_) inflater_ ? inflate_to(n) : read_plain(n);
+  if (out_.size() < n && !ended_)
+    allocating(str(inflater_ ? "inflating " : "reading ", where_), 0, [&] { inflater_ ? inflate_to(n) : read_plain(n); });
   return std::string_view(out_).substr(0, n);
 }
 
@@ -197,7 +218,8 @@ std::string gzip_compress(std::string_view data) {
 }
 
 std::string zlib_uncompress(std::string_view data, size_t expected_size, const std::string& where) {
-  std::string out(expected_size, '\0');
+  std::string out = allocating(str("decompressing a block of ", where), expected_size,
+                               [&] { return std::string(expected_size, '\0'); });
   uLongf out_len = uLongf(expected_size);
   const int rc = uncompress(reinterpret_cast<Bytef*>(out.data()), &out_len,
                             reinterpret_cast<const Bytef*>(data.data()), uLong(data.size()));

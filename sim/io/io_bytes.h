@@ -16,8 +16,12 @@
 
 namespace spume::io {
 
-// The whole file as bytes. Throws "<path>: no such file" when it does not exist.
+// The whole file as bytes. Throws "<path>: no such file" when it does not exist, and an Error naming the
+// file and its size when there is no memory for it.
 std::string read_file_bytes(const std::filesystem::path& path);
+// Its first n bytes (all of it when shorter): enough to check a magic number or a header before a
+// reader takes the whole file. Same errors as read_file_bytes.
+std::string read_file_head(const std::filesystem::path& path, size_t n);
 
 bool has_gzip_magic(std::string_view data);
 // Decompresses a gzip stream (several concatenated members allowed); `where` names the file in errors.

@@ -9,6 +9,8 @@
 #include <system_error>
 
 #include "sim/core/error.h"
+#include "sim/core/out_of_memory.h"
+#include "sim/core/unusable_masses.h"
 #include "sim/io/bgeo.h"
 #include "sim/io/fluid_import.h"
 #include "sim/io/houdini_geometry.h"
@@ -86,6 +88,9 @@ void describe_fluid(std::ostringstream& out, const FluidFrame& f) {
   if (!f.masses.empty()) {
     const auto [lo, hi] = std::minmax_element(f.masses.begin(), f.masses.end());
     out << "  masses: " << *lo << " .. " << *hi << " kg\n";
+    if (const UnusableMasses odd = unusable_masses(f.masses); odd.count > 0)
+      out << "  odd: " << odd.describe(f.masses.size()) << ", which no kinetic energy can be weighed with; a run "
+          << "gives those particles the uniform mass rho0 (2r)^3 and says so\n";
   }
 }
 
@@ -138,6 +143,20 @@ void describe_houdini(std::ostringstream& out, const std::filesystem::path& path
   describe_fluid(out, frame);
 }
 
+// Runs fn, which reads `path`: running out of memory names the file and its size.
+template <typename Fn>
+auto reading_file(const std::filesystem::path& path, Fn&& fn) {
+  try {
+    return fn();
+  } catch (const std::bad_alloc&) {
+    std::error_code ec;
+    const uint64_t bytes = std::filesystem::file_size(path, ec);
+    fail(path.string(), ": ", out_of_memory_message(str("reading this file", ec ? "" : " of " + byte_size_text(bytes))));
+  }
+}
+
+std::string describe_file(const std::filesystem::path& path);
+
 }  // namespace
 
 ParticleFormat particle_format(const std::filesystem::path& path) {
@@ -177,7 +196,8 @@ FluidFrame read_as_stored(const std::filesystem::path& path, const FluidReadOpti
 
 void describe_vdb(std::ostringstream& out, const std::filesystem::path& path) {
   VdbPointsInfo info;
-  FluidFrame frame = read_vdb_points(path, "", &info);
+  VdbContents contents = read_vdb_contents(path, "", &info);
+  FluidFrame& frame = contents.fluid;
   out << "  format: OpenVDB, " << info.grids.size() << " grid" << (info.grids.size() == 1 ? "" : "s") << "\n";
   for (const VdbGridInfo& g : info.grids)
     out << "    grid '" << g.name << "': " << g.type << ", voxel size " << g.voxel_size << " m, "
@@ -186,6 +206,16 @@ void describe_vdb(std::ostringstream& out, const std::filesystem::path& path) {
   for (const VdbAttributeInfo& a : info.attributes)
     out << " " << (info.grids.size() > 1 ? a.grid + "." : "") << a.name << " (" << a.type << ", " << a.codec << ")";
   out << "\n";
+  if (contents.diffuse) {
+    out << "  content: spume diffuse particles (output.vdb), frame " << contents.frame_index << ", time "
+        << contents.time << " s\n";
+    describe_diffuse(out, *contents.diffuse);
+    if (contents.diffuse->size() > 0) {
+      const auto [lo, hi] = std::minmax_element(contents.diffuse->ids.begin(), contents.diffuse->ids.end());
+      out << "  ids: " << *lo << " .. " << *hi << " (64-bit: parent fluid id, birth step, sample)\n";
+    }
+    return;
+  }
   out << "  spume reads: " << info.choice << "; positions P through the grid's transform; velocity "
       << (info.velocity_attribute.empty() ? "none (v, vel, velocity or particles_velocity)" : "from '" + info.velocity_attribute + "'")
       << "; ids " << (info.id_attribute.empty() ? "none (no 'id')" : "from 'id'") << "\n";
@@ -209,7 +239,7 @@ void describe_vdb(std::ostringstream& out, const std::filesystem::path& path) {
 
 FluidFrame read_fluid_file(const std::filesystem::path& path, const FluidReadOptions& options) {
   require_file(path);
-  FluidFrame frame = read_as_stored(path, options);
+  FluidFrame frame = reading_file(path, [&] { return read_as_stored(path, options); });
   to_y_up(frame, options.up);
   if (!options.stored_masses) frame.masses.clear();
   return frame;
@@ -217,6 +247,12 @@ FluidFrame read_fluid_file(const std::filesystem::path& path, const FluidReadOpt
 
 std::string describe_particle_file(const std::filesystem::path& path) {
   require_file(path);
+  return reading_file(path, [&] { return describe_file(path); });
+}
+
+namespace {
+
+std::string describe_file(const std::filesystem::path& path) {
   const ParticleFormat format = particle_format(path);
   std::ostringstream out;
   out << path.string() << "\n";
@@ -273,5 +309,7 @@ std::string describe_particle_file(const std::filesystem::path& path) {
   if (!ec) out << "  file size: " << bytes << " bytes\n";
   return out.str();
 }
+
+}  // namespace
 
 }  // namespace spume

@@ -115,6 +115,21 @@ Header parse_header(std::string_view data, const std::string& where) {
   return h;
 }
 
+constexpr size_t kHeadBytes = size_t(1) << 16;
+
+// The magic line, and a header of text up to 'end_header' (in the file's first bytes; a longer header
+// is checked whole once read): a file that is not PLY is refused on its first bytes, whatever its size.
+void check_header_text(std::string_view head, const std::string& where) {
+  if (head.substr(0, 3) != "ply" || head.size() < 4 || (head[3] != '\n' && head[3] != '\r'))
+    fail(where, ": not a PLY file: it must start with the line 'ply'");
+  const std::string_view header = head.substr(0, head.find("end_header"));
+  for (size_t i = 0; i < header.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(header[i]);
+    if (c < 0x20 && c != '\n' && c != '\r' && c != '\t')
+      fail(where, ": not a PLY file: byte ", int(c), " at offset ", i, " in its header, which is text up to 'end_header'");
+  }
+}
+
 // Values of the body in file order, from text tokens or binary words.
 class Body {
  public:
@@ -180,6 +195,7 @@ int find(const Element& e, std::initializer_list<const char*> names) {
 
 FluidFrame read_ply(const std::filesystem::path& path, std::vector<PointAttribute>* attributes) {
   const std::string where = path.string();
+  check_header_text(io::read_file_head(path, kHeadBytes), where);
   const std::string data = io::read_file_bytes(path);
   const Header h = parse_header(data, where);
   Body body(data, h, where);

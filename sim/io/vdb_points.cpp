@@ -15,6 +15,7 @@
 
 #include "sim/core/allocation_budget.h"
 #include "sim/core/error.h"
+#include "sim/core/out_of_memory.h"
 #include "sim/io/library_abort_guard.h"
 
 namespace spume {
@@ -70,6 +71,10 @@ struct GridRead {
   std::vector<Vec3f> positions, velocities;
   std::vector<int64_t> ids;
   std::string velocity_name, id_name;
+  // spume's diffuse export (io/vdb_points_writer.h): `lifetime` (float) and `type` (int32) as well.
+  bool diffuse = false;
+  std::vector<float> lifetimes;
+  std::vector<int32_t> types;
 };
 
 GridRead read_point_grid(const vpts::PointDataGrid& grid, const std::string& where) {
@@ -102,6 +107,10 @@ GridRead read_point_grid(const vpts::PointDataGrid& grid, const std::string& whe
     out.id_name = "id";
   }
 
+  const auto lifetime = find_attribute(d, "lifetime"), type = find_attribute(d, "type");
+  out.diffuse = lifetime && type && attribute_type(d, *lifetime).first == "float" &&
+                attribute_type(d, *type).first == "int32";
+
   const vdb::math::Transform& xform = grid.transform();
   for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) {
     // Every leaf of a grid normally shares one descriptor; one that does not would misread silently.
@@ -119,6 +128,10 @@ GridRead read_point_grid(const vpts::PointDataGrid& grid, const std::string& whe
         } else {
           out.ids.push_back(vpts::AttributeHandle<int32_t>(leaf->constAttributeArray(*id)).get(*i));
         }
+      }
+      if (out.diffuse) {
+        out.lifetimes.push_back(vpts::AttributeHandle<float>(leaf->constAttributeArray(*lifetime)).get(*i));
+        out.types.push_back(vpts::AttributeHandle<int32_t>(leaf->constAttributeArray(*type)).get(*i));
       }
     }
   }
@@ -138,16 +151,17 @@ bool has_vdb_magic(const std::filesystem::path& path) {
   return magic == kMagic;
 }
 
-FluidFrame read_vdb_points(const std::filesystem::path& path, const std::string& grid_name, VdbPointsInfo* info) {
+namespace {
+
+// Every point grid read (or the one named), merged in the file's order, with the checks every reader needs.
+GridRead read_vdb(const std::filesystem::path& path, const std::string& grid_name, VdbPointsInfo& meta,
+                  int& frame_index, double& frame_time) {
   initialize_openvdb();
   const std::string where = path.string();
   if (!has_vdb_magic(path)) fail(where, ": not an OpenVDB file (no VDB magic number at its start)");
-  VdbPointsInfo local;
-  VdbPointsInfo& meta = info ? *info : local;
   meta = VdbPointsInfo{};
-  FluidFrame frame;
-  std::vector<int64_t> ids;
-  int point_grids = 0, used_grids = 0, grids_with_velocity = 0, grids_with_ids = 0;
+  GridRead all;
+  int point_grids = 0, used_grids = 0, grids_with_velocity = 0, grids_with_ids = 0, diffuse_grids = 0;
   // What a sound file can ask for: its points decompressed (Blosc rarely shrinks points 64-fold) and
   // a margin; a damaged length field asks for far more (sim/core/allocation_budget.h).
   std::error_code size_error;
@@ -188,11 +202,17 @@ FluidFrame read_vdb_points(const std::filesystem::path& path, const std::string&
         ++used_grids;
         grids_with_velocity += !read.velocity_name.empty();
         grids_with_ids += !read.id_name.empty();
+        diffuse_grids += read.diffuse;
         if (!read.velocity_name.empty()) meta.velocity_attribute = read.velocity_name;
         if (!read.id_name.empty()) meta.id_attribute = read.id_name;
-        frame.positions.insert(frame.positions.end(), read.positions.begin(), read.positions.end());
-        frame.velocities.insert(frame.velocities.end(), read.velocities.begin(), read.velocities.end());
-        ids.insert(ids.end(), read.ids.begin(), read.ids.end());
+        if (const auto f = grid->getMetadata<vdb::Int32Metadata>("frame")) frame_index = f->value();
+        if (const auto t = grid->getMetadata<vdb::DoubleMetadata>("time")) frame_time = t->value();
+        auto append = [](auto& to, const auto& from) { to.insert(to.end(), from.begin(), from.end()); };
+        append(all.positions, read.positions);
+        append(all.velocities, read.velocities);
+        append(all.ids, read.ids);
+        append(all.lifetimes, read.lifetimes);
+        append(all.types, read.types);
       }
       meta.grids.push_back(g);
     }
@@ -204,7 +224,7 @@ FluidFrame read_vdb_points(const std::filesystem::path& path, const std::string&
       fail(where, ": cannot read this OpenVDB file: reading it asked for more than ", budget.bytes() >> 20,
             " MiB (256 MiB + 64 x its ", file_bytes, " bytes), which a sound file never needs: a length inside it is "
            "damaged");
-    fail(where, ": out of memory reading this OpenVDB file");
+    fail(where, ": ", out_of_memory_message(str("reading this OpenVDB file of ", byte_size_text(file_bytes))));
   } catch (const std::exception& e) {
     fail(where, ": cannot read this OpenVDB file (cut short or damaged?): ", e.what());
   }
@@ -224,11 +244,8 @@ FluidFrame read_vdb_points(const std::filesystem::path& path, const std::string&
     fail(where, ": some point grids have velocities and some do not; name one with fluid.vdb_grid");
   if (grids_with_ids != 0 && grids_with_ids != used_grids)
     fail(where, ": some point grids have ids and some do not; name one with fluid.vdb_grid");
-  for (int64_t id : ids) {
-    if (id < 0 || id > int64_t(UINT32_MAX))
-      fail(where, ": id ", id, " is outside 0 .. ", UINT32_MAX, " (spume's particle ids are unsigned 32-bit)");
-    frame.ids.push_back(uint32_t(id));
-  }
+  all.diffuse = diffuse_grids > 0 && diffuse_grids == used_grids && grids_with_ids == used_grids &&
+                grids_with_velocity == used_grids;
   std::string used;
   for (const VdbGridInfo& g : meta.grids)
     if (g.used) used += str(used.empty() ? "" : ", ", "'", g.name, "'");
@@ -236,8 +253,61 @@ FluidFrame read_vdb_points(const std::filesystem::path& path, const std::string&
                     ? str(used_grids == 1 ? "the point grid " : "every point grid: ", used,
                           used_grids == 1 ? " (the only one)" : " (fluid.vdb_grid names one)")
                     : str("the point grid ", used, " (fluid.vdb_grid)");
+  return all;
+}
+
+// spume's diffuse export as the diffuse frame it was written from (positions and velocities within the
+// writer's quantisation).
+DiffuseFrame diffuse_frame(GridRead& read, const std::string& where) {
+  DiffuseFrame frame;
+  frame.positions = std::move(read.positions);
+  frame.velocities = std::move(read.velocities);
+  frame.lifetimes = std::move(read.lifetimes);
+  frame.ids.reserve(read.ids.size());
+  frame.types.reserve(read.types.size());
+  // The writer stores each unsigned 64-bit id's bits as an int64 (OpenVDB has no uint64 attribute): ids
+  // whose parent is 2^31 or more read as negative, and come back whole as unsigned.
+  for (const int64_t id : read.ids) frame.ids.push_back(uint64_t(id));
+  for (size_t i = 0; i < read.types.size(); ++i) {
+    if (read.types[i] < 0 || read.types[i] >= kDiffuseTypeCount)
+      fail(where, ": diffuse particle ", i, " has type ", read.types[i], "; allowed 0 spray, 1 foam, 2 bubble");
+    frame.types.push_back(DiffuseType(read.types[i]));
+  }
   frame.validate(where);
   return frame;
+}
+
+}  // namespace
+
+VdbContents read_vdb_contents(const std::filesystem::path& path, const std::string& grid_name, VdbPointsInfo* info) {
+  const std::string where = path.string();
+  VdbPointsInfo local;
+  VdbContents contents;
+  GridRead read = read_vdb(path, grid_name, info ? *info : local, contents.frame_index, contents.time);
+  if (read.diffuse) {
+    contents.diffuse = diffuse_frame(read, where);
+    contents.diffuse->index = contents.frame_index;
+    contents.diffuse->time = contents.time;
+    return contents;
+  }
+  FluidFrame& frame = contents.fluid;
+  frame.positions = std::move(read.positions);
+  frame.velocities = std::move(read.velocities);
+  for (int64_t id : read.ids) {
+    if (id < 0 || id > int64_t(UINT32_MAX))
+      fail(where, ": id ", id, " is outside 0 .. ", UINT32_MAX, " (spume's fluid particle ids are unsigned 32-bit)");
+    frame.ids.push_back(uint32_t(id));
+  }
+  frame.validate(where);
+  return contents;
+}
+
+FluidFrame read_vdb_points(const std::filesystem::path& path, const std::string& grid_name, VdbPointsInfo* info) {
+  VdbContents contents = read_vdb_contents(path, grid_name, info);
+  if (contents.diffuse)
+    fail(path.string(), ": holds spume's diffuse particles (spray, foam and bubbles with their lifetimes, types "
+         "and 64-bit ids: output.vdb), not a fluid frame; 'spume info' describes it");
+  return std::move(contents.fluid);
 }
 
 }  // namespace spume

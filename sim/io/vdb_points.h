@@ -4,6 +4,7 @@
 // `v`, `vel`, `velocity` or `particles_velocity`, ids from `id` (int32 or int64), any codec. The
 // OpenVDB headers stay in vdb_points.cpp: this header is what the rest of spume sees.
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,10 +35,23 @@ struct VdbPointsInfo {
 
 // Reads the points of the point data grid named `grid` ("" for every point data grid in the file,
 // in the file's order). Errors name the file: not a VDB, cut or damaged, no point data grid, no grid
-// of that name, an attribute of a type spume cannot read as velocity or id. Grids that disagree on
-// having velocities or ids are refused (the frame would mix).
+// of that name, an attribute of a type spume cannot read as velocity or id, spume's own diffuse export
+// (read_vdb_contents reads it). Grids that disagree on having velocities or ids are refused (the frame
+// would mix).
 FluidFrame read_vdb_points(const std::filesystem::path& path, const std::string& grid = "",
                            VdbPointsInfo* info = nullptr);
+
+// What a .vdb holds: fluid points, or spume's own diffuse export (io/vdb_points_writer.h: every point
+// grid read has `lifetime` (float), `type` (int32), `id` and a velocity; its ids are 64-bit).
+struct VdbContents {
+  FluidFrame fluid;                     // the points, when they are not spume's diffuse export
+  std::optional<DiffuseFrame> diffuse;  // spume's diffuse export, with its frame and time metadata
+  int frame_index = 0;                  // the grid's "frame" and "time" metadata, when it has them
+  double time = 0.0;
+};
+// The same reading and errors as read_vdb_points, but spume's diffuse export is read as such.
+VdbContents read_vdb_contents(const std::filesystem::path& path, const std::string& grid = "",
+                              VdbPointsInfo* info = nullptr);
 
 // True when the file starts with OpenVDB's magic number.
 bool has_vdb_magic(const std::filesystem::path& path);

@@ -126,7 +126,7 @@ std::string vdb_points_bytes(const DiffuseFrame& frame, float voxel_size) {
       fail("OpenVDB points: diffuse particle ", frame.ids[i], " moves at (", v.x(), ", ", v.y(), ", ", v.z(),
            ") m/s, beyond the 65504 m/s a half-float velocity holds");
     velocities[i] = openvdb::Vec3f(v.x(), v.y(), v.z());
-    ids[i] = int64_t(frame.ids[i]);  // below 2^63: parent ids are 32 bits (frames.h)
+    ids[i] = int64_t(frame.ids[i]);  // the id's 64 bits: negative from parent ids of 2^31 up (frames.h)
     types[i] = int32_t(frame.types[i]);
   }
   if (n > 0) {

@@ -5,7 +5,8 @@
 //             rounded to the nearest step, so each axis is off by at most vdb_position_error(voxel)
 //   v         velocity, m/s: half floats (TruncateCodec), off by at most vdb_velocity_error(|v|)
 //   lifetime  float, s remaining: exact
-//   id        int64: exact (parent fluid id, birth step, sample; frames.h)
+//   id        int64: exact, the bits of the unsigned id (parent fluid id, birth step, sample; frames.h),
+//             so ids whose parent is 2^31 or more show as negative in tools that read it as signed
 //   type      int32: 0 spray, 1 foam, 2 bubble; and point groups "spray", "foam", "bubble"
 // The file's bytes depend only on the frame and the voxel size: OpenVDB stamps every file with a random
 // UUID, which is replaced by one derived from the rest of the file (same content, same UUID).

@@ -49,7 +49,7 @@ class LegacyParser {
   // The next non-blank line, split into words; binary data, if any, starts on the line after it.
   std::vector<std::string> line_words() {
     skip_space();
-    const size_t eol = std::min(data_.find('\n', pos_), data_.size());
+    const size_t eol = line_end();
     const std::string_view line(data_.data() + pos_, eol - pos_);
     pos_ = std::min(eol + 1, data_.size());
     std::vector<std::string> words;
@@ -59,7 +59,7 @@ class LegacyParser {
     return words;
   }
   std::string raw_line() {
-    const size_t eol = std::min(data_.find('\n', pos_), data_.size());
+    const size_t eol = line_end();
     std::string line = data_.substr(pos_, eol - pos_);
     pos_ = std::min(eol + 1, data_.size());
     if (!line.empty() && line.back() == '\r') line.pop_back();
@@ -108,6 +108,17 @@ class LegacyParser {
   }
 
  private:
+  // The end of the line at pos_. Keyword lines are short: one that runs on for a megabyte is binary data
+  // or damage, refused before it is copied (a file of zeros would otherwise be one line of its size).
+  size_t line_end() const {
+    constexpr size_t kLongestLine = size_t(1) << 20;
+    const size_t eol = std::string_view(data_).substr(pos_, kLongestLine).find('\n');
+    if (eol != std::string_view::npos) return pos_ + eol;
+    if (data_.size() - pos_ > kLongestLine)
+      fail(where_, ": a line at offset ", pos_, " runs past ", kLongestLine, " bytes without a line break, where a ",
+           "VTK keyword line belongs (binary data out of place, or not a VTK file)");
+    return data_.size();
+  }
   void skip_space() {
     while (pos_ < data_.size() && std::isspace(static_cast<unsigned char>(data_[pos_]))) ++pos_;
   }
@@ -140,6 +151,25 @@ uint64_t count_arg(const std::vector<std::string>& w, size_t i, const std::strin
   return v;
 }
 
+// The first three lines (version, title, ASCII or BINARY) fit in this many bytes: VTK's own reader
+// takes 256 characters a line.
+constexpr size_t kHeaderBytes = 3 * 257;
+
+// Checks the version line and that the title and the encoding line end within the first bytes, before
+// the whole file is read: anything else is refused on its first bytes, whatever its size.
+void check_header_lines(std::string_view head, const std::string& where) {
+  const size_t first_end = head.find('\n');
+  if (lower(head.substr(0, std::min<size_t>(first_end, 256))).rfind("# vtk datafile version", 0) != 0)
+    fail(where, ": not a legacy VTK file: the first line must be '# vtk DataFile Version x.y'");
+  const size_t title_end = head.find('\n', first_end + 1);
+  if (title_end == std::string_view::npos || head.find('\n', title_end + 1) == std::string_view::npos) {
+    if (head.size() < kHeaderBytes)
+      fail(where, ": truncated: a legacy VTK file holds a title line and an ASCII or BINARY line after its version line");
+    fail(where, ": not a legacy VTK file: its title and its ASCII/BINARY line do not end within its first ",
+         kHeaderBytes, " bytes (VTK reads 256 characters a line)");
+  }
+}
+
 struct PointArrays {
   std::vector<double> positions, velocity, ids, mass;
 };
@@ -147,10 +177,10 @@ struct PointArrays {
 }  // namespace
 
 FluidFrame read_vtk(const std::filesystem::path& path, std::vector<PointAttribute>* attributes) {
+  check_header_lines(io::read_file_head(path, kHeaderBytes), path.string());
   LegacyParser p(io::read_file_bytes(path), path.string());
   const std::string& where = p.where();
-  if (lower(p.raw_line()).rfind("# vtk datafile version", 0) != 0)
-    fail(where, ": not a legacy VTK file: the first line must be '# vtk DataFile Version x.y'");
+  p.raw_line();  // the version, checked
   p.raw_line();  // title
   const std::string encoding = lower(p.raw_line());
   if (encoding.rfind("binary", 0) == 0) p.set_binary(true);

@@ -212,13 +212,17 @@ std::string read_block(Source& s, const Layout& l, uint64_t expected, const std:
   const uint64_t total = blocks == 0 ? 0 : (blocks - 1) * block_size + last_size;
   if (total != expected)
     fail(where, ": array '", name, "' decompresses to ", total, " bytes; its size and the piece's point count need ", expected);
+  // zlib cannot compress more than about 1032:1, so a larger claim is corrupt, not a big allocation:
+  // every block is checked before anything is allocated.
+  for (uint64_t b = 0; b < blocks; ++b) {
+    const uint64_t usize = b + 1 == blocks ? last_size : block_size;
+    if (sizes[b] > s.bound() || usize > sizes[b] * 1032 + 64)
+      fail(where, ": truncated or corrupt compressed block ", b, " of array '", name, "'");
+  }
   std::string out;
   out.reserve(size_t(total));
   for (uint64_t b = 0; b < blocks; ++b) {
     const uint64_t usize = b + 1 == blocks ? last_size : block_size;
-    // zlib cannot compress more than about 1032:1, so a larger claim is corrupt, not a big allocation.
-    if (sizes[b] > s.bound() || usize > sizes[b] * 1032 + 64)
-      fail(where, ": truncated or corrupt compressed block ", b, " of array '", name, "'");
     out += io::zlib_uncompress(s.take(size_t(sizes[b])), size_t(usize), where);
   }
   return out;
@@ -259,6 +263,13 @@ struct Piece {
 
 FluidFrame read_vtu(const std::filesystem::path& path, std::vector<PointAttribute>* attributes) {
   const std::string where = path.string();
+  // XML, so its first bytes (after a byte order mark and blanks) open a tag: anything else is refused
+  // before the whole file is read.
+  const std::string head = io::read_file_head(path, 4096);
+  const size_t text = head.rfind("\xef\xbb\xbf", 0) == 0 ? 3 : 0;
+  const size_t open = head.find_first_not_of(" \t\r\n", text);
+  if (open == std::string::npos ? head.size() == 4096 : head[open] != '<')
+    fail(where, ": not an XML VTK file: it must start with '<?xml' or '<VTKFile'");
   const std::string data = io::read_file_bytes(path);
   XmlScanner xml(data, where);
   Layout layout;

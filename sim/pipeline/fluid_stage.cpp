@@ -10,6 +10,7 @@
 #include "sim/core/atomic_file.h"
 #include "sim/core/error.h"
 #include "sim/core/messages.h"
+#include "sim/core/out_of_memory.h"
 #include "sim/core/progress.h"
 #include "sim/core/stopwatch.h"
 #include "sim/fluid/solver.h"
@@ -145,10 +146,12 @@ FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions
     const double t = double(f) / scene.fluid.fps;
     const size_t done = size_t(f - first);
     with_context(str("fluid frame ", f, " (t = ", solver.time(), " to ", t, " s)"), [&] {
-      solver.advance_to(t, [&] {
-        if (progress.partial_due())
-          progress.partial(done, str("frame ", f, ": ", solver.stats().steps - before.steps, " steps, t = ",
-                                     solver.time(), " of ", t, " s"));
+      allocating("simulating the fluid", 0, [&] {
+        solver.advance_to(t, [&] {
+          if (progress.partial_due())
+            progress.partial(done, str("frame ", f, ": ", solver.stats().steps - before.steps, " steps, t = ",
+                                       solver.time(), " of ", t, " s"));
+        });
       });
     });
     const FluidFrame frame = solver.frame(f);

@@ -251,7 +251,7 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
   int unpaired_frames = 0;  // frames without ids whose particles could not be paired with the next's
   int band_frames = 0;      // frames found to be a narrow band and filled (MODEL.md §9.1)
   size_t most_filled = 0;
-  bool warned_band_skip = false, warned_pocket = false;
+  bool warned_band_skip = false, warned_pocket = false, warned_masses = false;
   float least_density = 0.0f, most_density = 0.0f;  // fluid.particles = flip: the measured density ratios
   BackgroundWriter writer;
   for (size_t k = resume; k < frames.size(); ++k) {
@@ -319,6 +319,11 @@ SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs,
       least_density = k == resume ? stats.density_ratio : std::min(least_density, stats.density_ratio);
       most_density = std::max(most_density, stats.density_ratio);
     }
+    if (stats.unusable_masses.count > 0 && !warned_masses)
+      messages::warning(str("frame ", stats.frame, ": ", stats.unusable_masses.describe(stats.fluid),
+                           " (Houdini writes -1 where no mass was set): those particles take the uniform mass "
+                           "rho0 (2r)^3 = ", scene.fluid.uniform_mass(), " kg for their kinetic energy"));
+    warned_masses = warned_masses || stats.unusable_masses.count > 0;
     if (!stats.unpaired_because.empty() && ++unpaired_frames == 1)
       messages::warning(str("the fluid frames carry no particle ids, and from frame ", stats.frame, " to ",
                            frames[k + 1], " ", stats.unpaired_because, ": particles are not paired by index there; ",

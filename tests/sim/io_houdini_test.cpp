@@ -334,6 +334,26 @@ TEST(HoudiniGeometry, SmallStoragesBigEndianAndTheVelocityNamedVel) {
   EXPECT_TRUE(contains(msg, bad.string() + ": point attribute 'v' has 2 components; a velocity needs 3")) << msg;
 }
 
+// Masses of -1 (Houdini's "not set"; a skinning demo's 11 files hold them): read as the file holds them,
+// and described as odd, where they used to make every reader refuse the file.
+TEST(HoudiniGeometry, MassesOfMinusOneAreReadAsTheyAreAndDescribedAsOdd) {
+  Json j;
+  j.open().s("pointcount").i8(3).s("attributes").open().s("pointattributes").open();
+  attribute(j, "P", 3, "fpreal32", [](Json& k) {
+    k.s("tuples").open().open().f32(0).f32(0).f32(0).close().open().f32(0.04f).f32(0).f32(0).close();
+    k.open().f32(0.08f).f32(0).f32(0).close().close();
+  });
+  attribute(j, "mass", 1, "fpreal32",
+            [](Json& k) { k.s("tuples").open().open().f32(-1).close().open().f32(0.5f).close().open().f32(-1).close().close(); });
+  j.close().close().close();
+  TempDir dir;
+  const fs::path p = dir.write("masses.bgeo", j.b);
+  EXPECT_EQ(read_fluid_file(p).masses, (std::vector<float>{-1, 0.5f, -1}));
+  const std::string d = describe_particle_file(p);
+  EXPECT_TRUE(contains(d, "masses: -1 .. 0.5 kg")) << d;
+  EXPECT_TRUE(contains(d, "odd: 2 of 3 masses are not > 0 (-1 kg)")) << d;
+}
+
 // ---- Broken input: refused with the file named, never a crash, nothing decompressed beyond the headers.
 
 TEST(HoudiniGeometry, TruncatedAndCorruptedCopiesAreRefusedNamingTheFile) {
@@ -352,7 +372,8 @@ TEST(HoudiniGeometry, TruncatedAndCorruptedCopiesAreRefusedNamingTheFile) {
   std::string bomb = file;
   for (size_t i = 0; i < 4; ++i) bomb[12 + 4 + i] = char(i == 3 ? 0x7f : 0xff);  // nbytes = 2^31 - 1
   std::string msg = error_of([&] { read_fluid_file(dir.write("bomb.bgeo.sc", bomb)); });
-  EXPECT_TRUE(contains(msg, "more than 1032 times the file's")) << msg;
+  EXPECT_TRUE(contains(msg, "claims 2147483647 decompressed bytes from")) << msg;
+  EXPECT_TRUE(contains(msg, "(LZ4), more than its codec can hold in them (256 to 1, its densest)")) << msg;
 
   // The binary JSON inside, cut anywhere or with any byte changed: an Error naming the file, or (for a
   // changed number) a frame; never a crash.
