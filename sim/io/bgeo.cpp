@@ -6,6 +6,7 @@
 
 #include "sim/core/atomic_file.h"
 #include "sim/core/error.h"
+#include "sim/io/attribute_names.h"
 #include "sim/io/io_bytes.h"
 
 namespace spume {
@@ -207,22 +208,25 @@ Parsed parse(const std::filesystem::path& path) {
   return p;
 }
 
-// The first attribute of the given names, checked to be `size` words of one of `types`.
-const Attr* pick(const Parsed& p, std::initializer_list<const char*> names, std::initializer_list<int> types,
-                 int size, const char* role) {
-  for (const char* name : names) {
-    const Attr* a = p.find(name);
-    if (!a) continue;
-    bool type_ok = false;
-    for (int t : types) type_ok |= a->type == t;
-    if (!type_ok || a->size != size) {
-      std::string allowed;
-      for (int t : types) allowed += str(allowed.empty() ? "" : " or ", type_name(t));
-      fail(p.where, ": attribute '", a->name, "' is ", type_name(a->type), "[", a->size, "]; ", role, " must be ",
-           allowed, "[", size, "]");
-    }
-    return a;
+// The attribute of this name, if any, checked to be `size` words of one of `types`.
+const Attr* pick(const Parsed& p, std::string_view name, std::initializer_list<int> types, int size, const char* role) {
+  const Attr* a = p.find(name);
+  if (!a) return nullptr;
+  bool type_ok = false;
+  for (int t : types) type_ok |= a->type == t;
+  if (!type_ok || a->size != size) {
+    std::string allowed;
+    for (int t : types) allowed += str(allowed.empty() ? "" : " or ", type_name(t));
+    fail(p.where, ": attribute '", a->name, "' is ", type_name(a->type), "[", a->size, "]; ", role, " must be ",
+         allowed, "[", size, "]");
   }
+  return a;
+}
+
+// The first attribute of one of the role's names (io/attribute_names.h), checked as above.
+const Attr* pick(const Parsed& p, io::AttributeRole role, std::initializer_list<int> types, int size) {
+  for (const std::string_view name : io::attribute_names(role))
+    if (const Attr* a = pick(p, name, types, size, io::attribute_role_text(role))) return a;
   return nullptr;
 }
 
@@ -272,11 +276,11 @@ FluidFrame read_bgeo(const std::filesystem::path& path, BgeoInfo* info) {
   FluidFrame frame;
   frame.positions.resize(n);
   for (size_t i = 0; i < n; ++i) frame.positions[i] = Vec3f(p.word<float>(i, 0), p.word<float>(i, 1), p.word<float>(i, 2));
-  if (const Attr* v = pick(p, {"v", "velocity"}, {kVector, kFloat}, 3, "a velocity")) {
+  if (const Attr* v = pick(p, io::AttributeRole::Velocity, {kVector, kFloat}, 3)) {
     frame.velocities.resize(n);
     for (size_t i = 0; i < n; ++i) frame.velocities[i] = vec3(p, i, v);
   }
-  if (const Attr* id = pick(p, {"id"}, {kInt}, 1, "the particle id")) {
+  if (const Attr* id = pick(p, io::AttributeRole::Id, {kInt}, 1)) {
     frame.ids.resize(n);
     for (size_t i = 0; i < n; ++i) {
       const int32_t value = p.word<int32_t>(i, id->word);
@@ -284,7 +288,7 @@ FluidFrame read_bgeo(const std::filesystem::path& path, BgeoInfo* info) {
       frame.ids[i] = uint32_t(value);
     }
   }
-  if (const Attr* m = pick(p, {"mass"}, {kFloat}, 1, "the mass")) {
+  if (const Attr* m = pick(p, io::AttributeRole::Mass, {kFloat}, 1)) {
     frame.masses.resize(n);
     for (size_t i = 0; i < n; ++i) frame.masses[i] = p.word<float>(i, m->word);
   }
@@ -297,14 +301,14 @@ BgeoInfo read_bgeo_info(const std::filesystem::path& path) { return parse(path).
 
 DiffuseFrame read_bgeo_diffuse(const std::filesystem::path& path) {
   const Parsed p = parse(path);
-  const Attr* v = pick(p, {"v"}, {kVector, kFloat}, 3, "a velocity");
-  const Attr* type = pick(p, {"type"}, {kInt}, 1, "the diffuse type");
-  const Attr* life = pick(p, {"lifetime"}, {kFloat}, 1, "the lifetime");
+  const Attr* v = pick(p, "v", {kVector, kFloat}, 3, "a velocity");
+  const Attr* type = pick(p, "type", {kInt}, 1, "the diffuse type");
+  const Attr* life = pick(p, "lifetime", {kFloat}, 1, "the lifetime");
   if (!v || !type || !life)
     fail(p.where, ": not a spume diffuse BGEO: needs point attributes 'v' (vector[3]), 'type' (int) and 'lifetime' (float)");
-  const Attr* parent = pick(p, {"id"}, {kInt}, 1, "the parent id");
-  const Attr* birth = pick(p, {"birth"}, {kInt}, 1, "the birth step");
-  const Attr* sample = pick(p, {"sample"}, {kInt}, 1, "the sample index");
+  const Attr* parent = pick(p, "id", {kInt}, 1, "the parent id");
+  const Attr* birth = pick(p, "birth", {kInt}, 1, "the birth step");
+  const Attr* sample = pick(p, "sample", {kInt}, 1, "the sample index");
   const size_t n = p.info.point_count;
   DiffuseFrame frame;
   frame.resize(n);

@@ -8,6 +8,7 @@
 #include <map>
 
 #include "sim/core/error.h"
+#include "sim/io/attribute_names.h"
 #include "sim/io/houdini_json.h"
 #include "sim/io/houdini_scf.h"
 #include "sim/io/houdini_values.h"
@@ -20,7 +21,6 @@ using hjson::Kind;
 using hjson::Reader;
 
 constexpr int64_t kMaxPoints = std::numeric_limits<int32_t>::max();
-constexpr const char* kVelocityNames[] = {"v", "vel", "velocity"};
 
 struct Bytes {
   std::string json;
@@ -57,9 +57,9 @@ Bytes json_bytes(const std::filesystem::path& path) {
   return b;
 }
 
-// The point attributes spume uses, decoded as the walk meets them: string ids defined later in the file may
-// reuse an id, so the walk never goes back.
-constexpr const char* kUsed[] = {"P", "v", "vel", "velocity", "id", "mass"};
+// The point attributes spume uses (P and io/attribute_names.h), decoded as the walk meets them: string ids
+// defined later in the file may reuse an id, so the walk never goes back.
+bool used_attribute(std::string_view name) { return name == "P" || io::attribute_role(name).has_value(); }
 
 struct Wanted {
   int size = 0;
@@ -131,7 +131,7 @@ void read_point_attribute(Reader& r, Walk& walk) {
     if (key == "size") size = int(r.integer(str("size of attribute '", name, "'"), 1, 1 << 16));
     else if (key == "storage") storage = r.string(str("storage of attribute '", name, "'"));
     else if (key == "values" && type == "numeric" &&
-             std::find(std::begin(kUsed), std::end(kUsed), name) != std::end(kUsed)) {
+             used_attribute(name)) {
       if (!walk.point_count) r.fail_at(r.offset(), "point attributes before the pointcount (file corrupt?)");
       Wanted w{size, {}};
       hjson::read_values(r, uint64_t(*walk.point_count), size, w.values, str("point attribute '", name, "'"));
@@ -159,6 +159,14 @@ const Wanted* find_sized(const std::map<std::string, Wanted, std::less<>>& wante
   if (it->second.size != size)
     fail(where, ": point attribute '", name, "' has ", it->second.size, " components; ", role, " needs ", size);
   return &it->second;
+}
+
+// The first of the role's names (io/attribute_names.h) the file holds, of one component.
+const Wanted* find_role(const std::map<std::string, Wanted, std::less<>>& wanted, io::AttributeRole role,
+                        const std::string& where) {
+  for (const std::string_view name : io::attribute_names(role))
+    if (const Wanted* w = find_sized(wanted, name, 1, where, io::attribute_role_text(role))) return w;
+  return nullptr;
 }
 
 }  // namespace
@@ -210,13 +218,13 @@ FluidFrame read_houdini_geometry(const std::filesystem::path& path, HoudiniGeome
   const Wanted* p = find_sized(wanted, "P", 3, where, "the position");
   if (!p && n > 0) fail(where, ": ", n, " points but no point attribute 'P' (positions)");
   const Wanted* v = nullptr;
-  for (const char* name : kVelocityNames)
+  for (const std::string_view name : io::attribute_names(io::AttributeRole::Velocity))
     if ((v = find_sized(wanted, name, 3, where, "a velocity"))) {
       info.velocity_attribute = name;
       break;
     }
-  const Wanted* id = find_sized(wanted, "id", 1, where, "the particle id");
-  const Wanted* mass = find_sized(wanted, "mass", 1, where, "the mass");
+  const Wanted* id = find_role(wanted, io::AttributeRole::Id, where);
+  const Wanted* mass = find_role(wanted, io::AttributeRole::Mass, where);
 
   // Which points are particles: with ids, those with an id >= 0.
   std::vector<uint32_t> ids;

@@ -27,7 +27,7 @@ struct HoudiniGeometryInfo {
   size_t primitive_count = 0;
   std::string primitive_summary;                  // Houdini's, e.g. "12,854 Polygons"
   std::vector<PointAttribute> point_attributes;   // type: the storage ("fpreal32", "int32") or kind ("string")
-  std::string velocity_attribute;                 // "v", "vel" or "velocity"; empty when none
+  std::string velocity_attribute;                 // the velocity name read (io/attribute_names.h); empty when none
   size_t points_without_id = 0;  // points with a negative id (Houdini's -1: no id), left out of the frame
   Aabb point_bounds;             // of every point in the file
   Aabb velocity_range;           // per component, over every point in the file (empty without velocity)

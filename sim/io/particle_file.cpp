@@ -11,6 +11,7 @@
 #include "sim/core/error.h"
 #include "sim/core/out_of_memory.h"
 #include "sim/core/unusable_masses.h"
+#include "sim/io/attribute_names.h"
 #include "sim/io/bgeo.h"
 #include "sim/io/fluid_import.h"
 #include "sim/io/houdini_geometry.h"
@@ -217,8 +218,13 @@ void describe_vdb(std::ostringstream& out, const std::filesystem::path& path) {
     return;
   }
   out << "  spume reads: " << info.choice << "; positions P through the grid's transform; velocity "
-      << (info.velocity_attribute.empty() ? "none (v, vel, velocity or particles_velocity)" : "from '" + info.velocity_attribute + "'")
-      << "; ids " << (info.id_attribute.empty() ? "none (no 'id')" : "from 'id'") << "\n";
+      << (info.velocity_attribute.empty() ? "none (" + io::attribute_names_text(io::AttributeRole::Velocity) + ")"
+                                          : "from '" + info.velocity_attribute + "'")
+      << "; ids " << (info.id_attribute.empty() ? "none (" + io::attribute_names_text(io::AttributeRole::Id) + ")"
+                                                : "from '" + info.id_attribute + "'")
+      << "; masses " << (info.mass_attribute.empty() ? "none (" + io::attribute_names_text(io::AttributeRole::Mass) + ")"
+                                                     : "from '" + info.mass_attribute + "'")
+      << "\n";
   // What a scene with the default keys would make of it (fluid.up_axis "auto", no fluid.velocity_scale).
   const FluidImport import = resolve_fluid_import(path, "auto", "", std::nullopt, 0.0);
   if (import.read.up == UpAxis::Y) out << "  up axis: y (no Mantaflow config beside the file; fluid.up_axis = \"z\" turns a Z-up cache)\n";

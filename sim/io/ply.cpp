@@ -7,6 +7,7 @@
 
 #include "sim/core/atomic_file.h"
 #include "sim/core/error.h"
+#include "sim/io/attribute_names.h"
 #include "sim/io/io_bytes.h"
 
 namespace spume {
@@ -184,11 +185,32 @@ class Body {
   io::TokenReader text_;
 };
 
-int find(const Element& e, std::initializer_list<const char*> names) {
-  for (const char* n : names)
-    for (size_t i = 0; i < e.props.size(); ++i)
-      if (!e.props[i].list && e.props[i].name == n) return int(i);
+int find(const Element& e, std::string_view name) {
+  for (size_t i = 0; i < e.props.size(); ++i)
+    if (!e.props[i].list && e.props[i].name == name) return int(i);
   return -1;
+}
+
+// The first of the role's names (io/attribute_names.h) the element has.
+int find(const Element& e, io::AttributeRole role) {
+  for (const std::string_view name : io::attribute_names(role))
+    if (const int i = find(e, name); i >= 0) return i;
+  return -1;
+}
+
+// The velocity's three scalar properties under the first of its names the element has, spelt `vx`
+// or `velocity_x` (io::velocity_component); {-1, -1, -1} without one. `spelt`: the x component's name.
+std::array<int, 3> find_velocity(const Element& e, std::string& spelt) {
+  for (const std::string_view name : io::attribute_names(io::AttributeRole::Velocity))
+    for (const bool underscore : {false, true}) {
+      std::array<int, 3> v;
+      for (int a = 0; a < 3; ++a) v[a] = find(e, io::velocity_component(name, underscore, a));
+      if (v[0] >= 0 || v[1] >= 0 || v[2] >= 0) {
+        spelt = io::velocity_component(name, underscore, 0);
+        return v;
+      }
+    }
+  return {-1, -1, -1};
 }
 
 }  // namespace
@@ -208,14 +230,16 @@ FluidFrame read_ply(const std::filesystem::path& path, std::vector<PointAttribut
       continue;
     }
     found_vertex = true;
-    const std::array<int, 3> x = {find(e, {"x"}), find(e, {"y"}), find(e, {"z"})};
-    std::array<int, 3> v = {find(e, {"vx"}), find(e, {"vy"}), find(e, {"vz"})};
-    if (v[0] < 0 && v[1] < 0 && v[2] < 0) v = {find(e, {"velocity_x"}), find(e, {"velocity_y"}), find(e, {"velocity_z"})};
-    const int id = find(e, {"id"}), mass = find(e, {"mass"});
+    const std::array<int, 3> x = {find(e, "x"), find(e, "y"), find(e, "z")};
+    std::string velocity_x;
+    const std::array<int, 3> v = find_velocity(e, velocity_x);
+    const int id = find(e, io::AttributeRole::Id), mass = find(e, io::AttributeRole::Mass);
     if (x[0] < 0 || x[1] < 0 || x[2] < 0) fail(where, ": PLY element 'vertex' lacks scalar properties x, y and z");
     const bool has_v = v[0] >= 0 || v[1] >= 0 || v[2] >= 0;
-    if (has_v && (v[0] < 0 || v[1] < 0 || v[2] < 0))
-      fail(where, ": PLY vertex velocity is incomplete; need all of vx vy vz (or velocity_x velocity_y velocity_z)");
+    if (has_v && (v[0] < 0 || v[1] < 0 || v[2] < 0)) {
+      const std::string name = velocity_x.substr(0, velocity_x.size() - 1);
+      fail(where, ": PLY vertex velocity is incomplete; need all of ", name, "x ", name, "y ", name, "z");
+    }
     const size_t n = size_t(e.count);
     frame.positions.resize(n);
     if (has_v) frame.velocities.resize(n);

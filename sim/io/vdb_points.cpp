@@ -16,6 +16,7 @@
 #include "sim/core/allocation_budget.h"
 #include "sim/core/error.h"
 #include "sim/core/out_of_memory.h"
+#include "sim/io/attribute_names.h"
 #include "sim/io/library_abort_guard.h"
 
 namespace spume {
@@ -23,9 +24,6 @@ namespace {
 
 namespace vdb = openvdb;
 namespace vpts = openvdb::points;
-
-// Velocity attributes in the order they are looked for: Houdini's, then longer spellings, then Mantaflow's.
-constexpr std::array<const char*, 4> kVelocityNames = {"v", "vel", "velocity", "particles_velocity"};
 
 void initialize_openvdb() {
   static std::once_flag once;
@@ -43,8 +41,8 @@ std::pair<std::string, std::string> attribute_type(const vpts::AttributeSet::Des
   return {t.first, t.second};
 }
 
-std::optional<size_t> find_attribute(const vpts::AttributeSet::Descriptor& d, const std::string& name) {
-  const size_t i = d.find(name);
+std::optional<size_t> find_attribute(const vpts::AttributeSet::Descriptor& d, std::string_view name) {
+  const size_t i = d.find(std::string(name));
   if (i == vpts::AttributeSet::INVALID_POS) return std::nullopt;
   return i;
 }
@@ -70,7 +68,8 @@ bool is_vec3(const std::string& type, bool& doubles) {
 struct GridRead {
   std::vector<Vec3f> positions, velocities;
   std::vector<int64_t> ids;
-  std::string velocity_name, id_name;
+  std::vector<float> masses;
+  std::string velocity_name, id_name, mass_name;
   // spume's diffuse export (io/vdb_points_writer.h): `lifetime` (float) and `type` (int32) as well.
   bool diffuse = false;
   std::vector<float> lifetimes;
@@ -89,7 +88,7 @@ GridRead read_point_grid(const vpts::PointDataGrid& grid, const std::string& whe
     fail(where, ": point grid '", grid.getName(), "': P is ", attribute_type(d, *p).first, "; expected vec3s or vec3d");
   std::optional<size_t> v;
   bool v_doubles = false;
-  for (const char* name : kVelocityNames)
+  for (const std::string_view name : io::attribute_names(io::AttributeRole::Velocity))
     if ((v = find_attribute(d, name))) {
       out.velocity_name = name;
       if (!is_vec3(attribute_type(d, *v).first, v_doubles))
@@ -97,15 +96,26 @@ GridRead read_point_grid(const vpts::PointDataGrid& grid, const std::string& whe
              attribute_type(d, *v).first, "; expected vec3s or vec3d");
       break;
     }
-  const auto id = find_attribute(d, "id");
+  std::optional<size_t> id;
   bool id64 = false;
-  if (id) {
-    const std::string type = attribute_type(d, *id).first;
-    if (type != "int32" && type != "int64")
-      fail(where, ": point grid '", grid.getName(), "': id is ", type, "; expected int32 or int64");
-    id64 = type == "int64";
-    out.id_name = "id";
-  }
+  for (const std::string_view name : io::attribute_names(io::AttributeRole::Id))
+    if ((id = find_attribute(d, name))) {
+      const std::string type = attribute_type(d, *id).first;
+      if (type != "int32" && type != "int64")
+        fail(where, ": point grid '", grid.getName(), "': ", name, " is ", type, "; the particle id must be int32 or int64");
+      id64 = type == "int64";
+      out.id_name = name;
+      break;
+    }
+  std::optional<size_t> mass;
+  for (const std::string_view name : io::attribute_names(io::AttributeRole::Mass))
+    if ((mass = find_attribute(d, name))) {
+      if (attribute_type(d, *mass).first != "float")
+        fail(where, ": point grid '", grid.getName(), "': ", name, " is ", attribute_type(d, *mass).first,
+             "; the mass must be float");
+      out.mass_name = name;
+      break;
+    }
 
   const auto lifetime = find_attribute(d, "lifetime"), type = find_attribute(d, "type");
   out.diffuse = lifetime && type && attribute_type(d, *lifetime).first == "float" &&
@@ -129,6 +139,7 @@ GridRead read_point_grid(const vpts::PointDataGrid& grid, const std::string& whe
           out.ids.push_back(vpts::AttributeHandle<int32_t>(leaf->constAttributeArray(*id)).get(*i));
         }
       }
+      if (mass) out.masses.push_back(vpts::AttributeHandle<float>(leaf->constAttributeArray(*mass)).get(*i));
       if (out.diffuse) {
         out.lifetimes.push_back(vpts::AttributeHandle<float>(leaf->constAttributeArray(*lifetime)).get(*i));
         out.types.push_back(vpts::AttributeHandle<int32_t>(leaf->constAttributeArray(*type)).get(*i));
@@ -161,7 +172,8 @@ GridRead read_vdb(const std::filesystem::path& path, const std::string& grid_nam
   if (!has_vdb_magic(path)) fail(where, ": not an OpenVDB file (no VDB magic number at its start)");
   meta = VdbPointsInfo{};
   GridRead all;
-  int point_grids = 0, used_grids = 0, grids_with_velocity = 0, grids_with_ids = 0, diffuse_grids = 0;
+  int point_grids = 0, used_grids = 0, grids_with_velocity = 0, grids_with_ids = 0, grids_with_mass = 0;
+  int diffuse_grids = 0;
   // What a sound file can ask for: its points decompressed (Blosc rarely shrinks points 64-fold) and
   // a margin; a damaged length field asks for far more (sim/core/allocation_budget.h).
   std::error_code size_error;
@@ -202,15 +214,18 @@ GridRead read_vdb(const std::filesystem::path& path, const std::string& grid_nam
         ++used_grids;
         grids_with_velocity += !read.velocity_name.empty();
         grids_with_ids += !read.id_name.empty();
+        grids_with_mass += !read.mass_name.empty();
         diffuse_grids += read.diffuse;
         if (!read.velocity_name.empty()) meta.velocity_attribute = read.velocity_name;
         if (!read.id_name.empty()) meta.id_attribute = read.id_name;
+        if (!read.mass_name.empty()) meta.mass_attribute = read.mass_name;
         if (const auto f = grid->getMetadata<vdb::Int32Metadata>("frame")) frame_index = f->value();
         if (const auto t = grid->getMetadata<vdb::DoubleMetadata>("time")) frame_time = t->value();
         auto append = [](auto& to, const auto& from) { to.insert(to.end(), from.begin(), from.end()); };
         append(all.positions, read.positions);
         append(all.velocities, read.velocities);
         append(all.ids, read.ids);
+        append(all.masses, read.masses);
         append(all.lifetimes, read.lifetimes);
         append(all.types, read.types);
       }
@@ -244,6 +259,8 @@ GridRead read_vdb(const std::filesystem::path& path, const std::string& grid_nam
     fail(where, ": some point grids have velocities and some do not; name one with fluid.vdb_grid");
   if (grids_with_ids != 0 && grids_with_ids != used_grids)
     fail(where, ": some point grids have ids and some do not; name one with fluid.vdb_grid");
+  if (grids_with_mass != 0 && grids_with_mass != used_grids)
+    fail(where, ": some point grids have masses and some do not; name one with fluid.vdb_grid");
   all.diffuse = diffuse_grids > 0 && diffuse_grids == used_grids && grids_with_ids == used_grids &&
                 grids_with_velocity == used_grids;
   std::string used;
@@ -293,6 +310,7 @@ VdbContents read_vdb_contents(const std::filesystem::path& path, const std::stri
   FluidFrame& frame = contents.fluid;
   frame.positions = std::move(read.positions);
   frame.velocities = std::move(read.velocities);
+  frame.masses = std::move(read.masses);
   for (int64_t id : read.ids) {
     if (id < 0 || id > int64_t(UINT32_MAX))
       fail(where, ": id ", id, " is outside 0 .. ", UINT32_MAX, " (spume's fluid particle ids are unsigned 32-bit)");

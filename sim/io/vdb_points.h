@@ -1,8 +1,8 @@
 #pragma once
 // OpenVDB point caches (.vdb): Blender Mantaflow's fluid_data_####.vdb, Houdini's VDB points, any
-// file with point data grids. Positions go through each grid's transform (world space); velocity from
-// `v`, `vel`, `velocity` or `particles_velocity`, ids from `id` (int32 or int64), any codec. The
-// OpenVDB headers stay in vdb_points.cpp: this header is what the rest of spume sees.
+// file with point data grids. Positions go through each grid's transform (world space); velocity, id
+// (int32 or int64) and mass (float) under the names of io/attribute_names.h, any codec. The OpenVDB
+// headers stay in vdb_points.cpp: this header is what the rest of spume sees.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -30,6 +30,7 @@ struct VdbPointsInfo {
   std::vector<VdbAttributeInfo> attributes;  // of every point grid, in the grids' order
   std::string velocity_attribute;            // "" without velocities
   std::string id_attribute;                  // "" without ids
+  std::string mass_attribute;                // "" without masses
   std::string choice;                        // which point grids were read, and why
 };
 

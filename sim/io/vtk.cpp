@@ -11,16 +11,18 @@
 
 #include "sim/core/atomic_file.h"
 #include "sim/core/error.h"
+#include "sim/io/attribute_names.h"
 #include "sim/io/io_bytes.h"
 
 namespace spume {
 namespace io {
 
 VtkRole vtk_role(std::string_view name, int components) {
-  if (components == 3 && (name == "velocity" || name == "v" || name == "Velocity")) return VtkRole::Velocity;
-  if (components == 1 && (name == "id" || name == "ids" || name == "ID")) return VtkRole::Id;
-  if (components == 1 && name == "mass") return VtkRole::Mass;
-  return VtkRole::None;
+  const std::optional<AttributeRole> role = attribute_role(name);
+  if (!role) return VtkRole::None;
+  if (*role == AttributeRole::Velocity) return components == 3 ? VtkRole::Velocity : VtkRole::None;
+  if (components != 1) return VtkRole::None;
+  return *role == AttributeRole::Id ? VtkRole::Id : VtkRole::Mass;
 }
 
 }  // namespace io
@@ -203,6 +205,9 @@ FluidFrame read_vtk(const std::filesystem::path& path, std::vector<PointAttribut
     if (i >= w.size()) fail(where, ": malformed VTK line starting '", w[0], "': missing word ", i + 1);
     return w[i];
   };
+  struct {
+    size_t velocity = SIZE_MAX, id = SIZE_MAX, mass = SIZE_MAX;
+  } preferred;  // the table's place of the name each array was read under
   // Reads one array of comps x tuples values, keeping it when it is a point array spume uses.
   auto array = [&](const std::string& name, const std::string& type_name, NumType t, uint64_t comps, uint64_t tuples) {
     if (comps == 0 || comps > 1024 || tuples > UINT64_MAX / comps)
@@ -215,7 +220,13 @@ FluidFrame read_vtk(const std::filesystem::path& path, std::vector<PointAttribut
                                   : role == VtkRole::Id     ? &arrays.ids
                                   : role == VtkRole::Mass   ? &arrays.mass
                                                             : nullptr;
-      if (slot && slot->empty()) dst = slot;
+      // A name the table prefers replaces one read before it (io/attribute_names.h).
+      size_t& best = role == VtkRole::Velocity ? preferred.velocity : role == VtkRole::Id ? preferred.id : preferred.mass;
+      if (slot && io::attribute_preference(name) < best) {
+        best = io::attribute_preference(name);
+        slot->clear();
+        dst = slot;
+      }
       if (dst && tuples != n_points)
         fail(where, ": point array '", name, "' has ", tuples, " tuples for ", n_points, " points");
     }

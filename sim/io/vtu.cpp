@@ -8,6 +8,7 @@
 
 #include "sim/core/error.h"
 #include "sim/io/io_bytes.h"
+#include "sim/io/attribute_names.h"
 #include "sim/io/vtk.h"
 
 namespace spume {
@@ -365,11 +366,22 @@ FluidFrame read_vtu(const std::filesystem::path& path, std::vector<PointAttribut
     auto start = [&](size_t have, const std::string& name) {
       if (have != first) fail(where, ": point array '", name, "' is in piece ", pi, " but not in an earlier piece");
     };
+    // Per role, the array of the name the table prefers (io/attribute_names.h).
+    const ArrayRef* best[4] = {};  // by VtkRole
     for (const ArrayRef& a : piece.arrays) {
       const uint64_t comps = number_attr(a.tag, "NumberOfComponents", "1", where);
       const VtkRole role = io::vtk_role(a.tag.attr("Name"), int(std::min<uint64_t>(comps, 4)));
+      const ArrayRef*& slot = best[int(role)];
+      if (role != VtkRole::None &&
+          (!slot || io::attribute_preference(a.tag.attr("Name")) < io::attribute_preference(slot->tag.attr("Name"))))
+        slot = &a;
+    }
+    for (const ArrayRef* chosen : {best[int(VtkRole::Velocity)], best[int(VtkRole::Id)], best[int(VtkRole::Mass)]}) {
+      if (!chosen) continue;
+      const ArrayRef& a = *chosen;
+      const uint64_t comps = number_attr(a.tag, "NumberOfComponents", "1", where);
+      const VtkRole role = io::vtk_role(a.tag.attr("Name"), int(std::min<uint64_t>(comps, 4)));
       bool& got = role == VtkRole::Velocity ? got_v : role == VtkRole::Id ? got_id : got_m;
-      if (role == VtkRole::None || got) continue;
       got = true;
       decode(a, piece.points, int(comps), values);
       if (role == VtkRole::Velocity) {

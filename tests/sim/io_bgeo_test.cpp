@@ -13,6 +13,7 @@
 #include "tests/support/error_of.h"
 #include "tests/support/files.h"
 #include "tests/support/temp_dir.h"
+#include "sim/io/attribute_names.h"
 #include "sim/io/bgeo.h"
 #include "sim/io/io_bytes.h"
 
@@ -139,6 +140,28 @@ TEST(Bgeo, ReadsHandBuiltUncompressedFileWithAllAttributeKinds) {
   ASSERT_EQ(info.detail_attributes.size(), 1u);
   EXPECT_EQ(info.detail_attributes[0].name, "timestep");
   EXPECT_EQ(info.bounds.min, Vec3f(0, -2, -1));
+}
+
+// Every name of the one attribute table (io/attribute_names.h) is read as its attribute; the k-th
+// file spells the velocity, the id and the mass with the k-th name of each.
+TEST(Bgeo, ReadsEveryNameOfTheAttributeTable) {
+  TempDir dir;
+  const auto velocity = io::attribute_names(io::AttributeRole::Velocity), id = io::attribute_names(io::AttributeRole::Id),
+             mass = io::attribute_names(io::AttributeRole::Mass);
+  for (size_t k = 0; k < std::max({velocity.size(), id.size(), mass.size()}); ++k) {
+    const std::string_view v_name = velocity[k % velocity.size()], id_name = id[k % id.size()],
+                           m_name = mass[k % mass.size()];
+    SCOPED_TRACE(std::string(v_name) + ", " + std::string(id_name) + ", " + std::string(m_name));
+    Be f = header(1, 3);
+    f.attr(m_name, 1, 0).attr(v_name, 3, 5).attr(id_name, 1, 1);
+    f.f32(1).f32(2).f32(3).f32(1).f32(0.5f).f32(4).f32(5).f32(6).i32(9);
+    f.raw(std::string("\x00\xff", 2));
+    const FluidFrame frame = read_bgeo(dir.write("k" + std::to_string(k) + ".bgeo", f.b));
+    ASSERT_EQ(frame.size(), 1u);
+    EXPECT_EQ(frame.velocities, (std::vector<Vec3f>{Vec3f(4, 5, 6)}));
+    EXPECT_EQ(frame.ids, (std::vector<uint32_t>{9}));
+    EXPECT_EQ(frame.masses, (std::vector<float>{0.5f}));
+  }
 }
 
 TEST(Bgeo, FluidRoundTripIsGzipped) {

@@ -11,6 +11,7 @@
 #include <set>
 #include <vector>
 
+#include "sim/io/attribute_names.h"
 #include "sim/io/frame_pattern.h"
 #include "sim/io/houdini_geometry.h"
 #include "sim/io/io_bytes.h"
@@ -251,6 +252,25 @@ std::string five_points() {
   return j.b;
 }
 
+// Two points whose velocity, id and mass are named `v`, `id` and `mass`: P (1 2 3) (4 5 6), velocity
+// (i, -i, 0.5), ids 7 and 9, masses 0.5.
+std::string two_points_named(const std::string& v, const std::string& id, const std::string& mass) {
+  Json j;
+  j.open().s("fileversion").s("19.5.0").s("pointcount").i8(2).s("attributes").open().s("pointattributes").open();
+  attribute(j, "P", 3, "fpreal32", [](Json& k) {
+    k.s("tuples").open().open().f32(1).f32(2).f32(3).close().open().f32(4).f32(5).f32(6).close().close();
+  });
+  attribute(j, v, 3, "fpreal32", [](Json& k) {
+    k.s("tuples").open();
+    for (int i = 0; i < 2; ++i) k.open().f32(float(i)).f32(float(-i)).f32(0.5f).close();
+    k.close();
+  });
+  attribute(j, id, 1, "int64", [](Json& k) { k.s("arrays").open().uniform<int64_t>('\x14', {7, 9}).close(); });
+  attribute(j, mass, 1, "fpreal32", [](Json& k) { k.s("arrays").open().uniform<float>('\x19', {0.5f, 0.5f}).close(); });
+  j.close().close().close();
+  return j.b;
+}
+
 // A .bgeo.sc around `json`: "scf1", 8 zero bytes, Blosc chunks of at most `chunk` bytes, the index.
 std::string scf(const std::string& json, size_t chunk) {
   std::string out = std::string("scf1") + std::string(8, '\0');
@@ -292,6 +312,24 @@ TEST(HoudiniGeometry, PagedPackedConstantTuplesAndArraysInEveryContainer) {
     EXPECT_EQ(info.point_bounds.min, Vec3f(10, 20, 30));  // the left-out point counts in the file's bounds
     EXPECT_EQ(read_fluid_file(p).size(), 4u);
     EXPECT_TRUE(contains(describe_particle_file(p), "left out: 1 points with a negative id")) << describe_particle_file(p);
+  }
+}
+
+// Every name of the one attribute table (io/attribute_names.h) is read as its attribute.
+TEST(HoudiniGeometry, ReadsEveryNameOfTheAttributeTable) {
+  TempDir dir;
+  const auto velocity = io::attribute_names(io::AttributeRole::Velocity), id = io::attribute_names(io::AttributeRole::Id),
+             mass = io::attribute_names(io::AttributeRole::Mass);
+  for (size_t k = 0; k < std::max({velocity.size(), id.size(), mass.size()}); ++k) {
+    const std::string v(velocity[k % velocity.size()]), i(id[k % id.size()]), m(mass[k % mass.size()]);
+    SCOPED_TRACE(v + ", " + i + ", " + m);
+    HoudiniGeometryInfo info;
+    const FluidFrame f = read_houdini_geometry(dir.write("k" + std::to_string(k) + ".bgeo", two_points_named(v, i, m)), &info);
+    ASSERT_EQ(f.size(), 2u);
+    EXPECT_EQ(info.velocity_attribute, v);
+    EXPECT_EQ(f.velocities, (std::vector<Vec3f>{Vec3f(0, 0, 0.5f), Vec3f(1, -1, 0.5f)}));
+    EXPECT_EQ(f.ids, (std::vector<uint32_t>{7, 9}));
+    EXPECT_EQ(f.masses, (std::vector<float>{0.5f, 0.5f}));
   }
 }
 

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +12,7 @@
 #include "tests/support/files.h"
 #include "tests/support/temp_dir.h"
 #include "tests/sim/io_test_support.h"
+#include "sim/io/attribute_names.h"
 #include "sim/io/ply.h"
 
 namespace fs = std::filesystem;
@@ -44,6 +46,29 @@ TEST(Ply, ReadsAsciiWithVelocityIdsAndAFaceElement) {
   ASSERT_EQ(attrs.size(), 8u);
   EXPECT_EQ(attrs[3].name, "red");
   EXPECT_EQ(attrs[3].type, "uchar");
+}
+
+// Every name of the one attribute table (io/attribute_names.h), the velocity's spelt per component
+// both ways PLY writers spell them: "vx" and "velocity_x". Written by hand, not by io::velocity_component.
+TEST(Ply, ReadsEveryNameOfTheAttributeTable) {
+  TempDir dir;
+  const auto velocity = io::attribute_names(io::AttributeRole::Velocity), id = io::attribute_names(io::AttributeRole::Id),
+             mass = io::attribute_names(io::AttributeRole::Mass);
+  int file = 0;
+  for (size_t k = 0; k < std::max({velocity.size(), id.size(), mass.size()}); ++k)
+    for (const char* sep : {"", "_"}) {
+      const std::string v(velocity[k % velocity.size()]);
+      SCOPED_TRACE(v + sep + "x, " + std::string(id[k % id.size()]) + ", " + std::string(mass[k % mass.size()]));
+      std::string text = "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n";
+      for (const char* axis : {"x", "y", "z"}) text += "property float " + v + sep + axis + "\n";
+      text += "property int " + std::string(id[k % id.size()]) + "\nproperty float " + std::string(mass[k % mass.size()]) +
+              "\nend_header\n1 2 3 4 5 6 9 0.5\n";
+      const FluidFrame f = read_ply(dir.write("k" + std::to_string(file++) + ".ply", text));
+      ASSERT_EQ(f.size(), 1u);
+      EXPECT_EQ(f.velocities, (std::vector<Vec3f>{Vec3f(4, 5, 6)}));
+      EXPECT_EQ(f.ids, (std::vector<uint32_t>{9}));
+      EXPECT_EQ(f.masses, (std::vector<float>{0.5f}));
+    }
 }
 
 TEST(Ply, ReadsBigEndianWithListsBeforeAndInsideVertices) {

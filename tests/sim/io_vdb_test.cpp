@@ -17,6 +17,7 @@
 #include <map>
 
 #include "sim/core/error.h"
+#include "sim/io/attribute_names.h"
 #include "sim/io/fluid_import.h"
 #include "sim/io/fluid_source.h"
 #include "sim/io/io_bytes.h"
@@ -50,6 +51,9 @@ struct PointsSpec {
   std::vector<Vec3f> velocities;
   std::vector<int32_t> ids32;
   std::vector<int64_t> ids64;
+  std::string id_name = "id";
+  std::vector<float> masses;
+  std::string mass_name = "mass";
   bool mantaflow_flag = false;            // an int32 `U` with the truncate codec, as Mantaflow writes
 };
 
@@ -70,12 +74,16 @@ openvdb::GridBase::Ptr make_points(const PointsSpec& s) {
     vp::populateAttribute(tree, index->tree(), s.velocity_name, vp::PointAttributeVector<Vec3f>(s.velocities));
   }
   if (!s.ids32.empty()) {
-    vp::appendAttribute<int32_t>(tree, "id");
-    vp::populateAttribute(tree, index->tree(), "id", vp::PointAttributeVector<int32_t>(s.ids32));
+    vp::appendAttribute<int32_t>(tree, s.id_name);
+    vp::populateAttribute(tree, index->tree(), s.id_name, vp::PointAttributeVector<int32_t>(s.ids32));
   }
   if (!s.ids64.empty()) {
-    vp::appendAttribute<int64_t>(tree, "id");
-    vp::populateAttribute(tree, index->tree(), "id", vp::PointAttributeVector<int64_t>(s.ids64));
+    vp::appendAttribute<int64_t>(tree, s.id_name);
+    vp::populateAttribute(tree, index->tree(), s.id_name, vp::PointAttributeVector<int64_t>(s.ids64));
+  }
+  if (!s.masses.empty()) {
+    vp::appendAttribute<float>(tree, s.mass_name);
+    vp::populateAttribute(tree, index->tree(), s.mass_name, vp::PointAttributeVector<float>(s.masses));
   }
   if (s.mantaflow_flag) {
     vp::appendAttribute<int32_t, vp::TruncateCodec>(tree, "U");
@@ -134,6 +142,35 @@ TEST(VdbPoints, PositionsThroughTheTransformVelocitiesAndIdsByName) {
     for (int a = 0; a < 3; ++a) {
       EXPECT_NEAR(f.positions[i][a], s.positions[n][a], 1e-5) << "point " << n;
       EXPECT_FLOAT_EQ(f.velocities[i][a], s.velocities[n][a]) << "point " << n;
+    }
+  }
+}
+
+// Every name of the one attribute table (io/attribute_names.h) is read as its attribute.
+TEST(VdbPoints, ReadsEveryNameOfTheAttributeTable) {
+  testing::TempDir dir;
+  const auto velocity = io::attribute_names(io::AttributeRole::Velocity), id = io::attribute_names(io::AttributeRole::Id),
+             mass = io::attribute_names(io::AttributeRole::Mass);
+  for (size_t k = 0; k < std::max({velocity.size(), id.size(), mass.size()}); ++k) {
+    PointsSpec s = lattice(2, {0, 0, 0}, 0.3);
+    s.velocity_name = velocity[k % velocity.size()];
+    s.id_name = id[k % id.size()];
+    s.mass_name = mass[k % mass.size()];
+    s.masses.assign(s.positions.size(), 0.5f);
+    SCOPED_TRACE(s.velocity_name + ", " + s.id_name + ", " + s.mass_name);
+    const fs::path path = dir / ("k" + std::to_string(k) + ".vdb");
+    write_vdb(path, {make_points(s)});
+    VdbPointsInfo info;
+    const FluidFrame f = read_vdb_points(path, "", &info);
+    ASSERT_EQ(f.size(), 8u);
+    EXPECT_EQ(info.velocity_attribute, s.velocity_name);
+    EXPECT_EQ(info.id_attribute, s.id_name);
+    EXPECT_EQ(info.mass_attribute, s.mass_name);
+    EXPECT_EQ(f.masses, std::vector<float>(8, 0.5f));
+    for (size_t i = 0; i < f.size(); ++i) {
+      const size_t n = f.ids[i] - 1000;  // the lattice's index
+      ASSERT_LT(n, 8u);
+      for (int a = 0; a < 3; ++a) EXPECT_EQ(f.velocities[i][a], s.velocities[n][a]) << n;
     }
   }
 }

@@ -2,6 +2,7 @@
 #include <unistd.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,7 @@
 #include "tests/support/files.h"
 #include "tests/support/temp_dir.h"
 #include "tests/sim/io_test_support.h"
+#include "sim/io/attribute_names.h"
 #include "sim/io/vtk.h"
 
 namespace fs = std::filesystem;
@@ -85,6 +87,42 @@ TEST(Vtk, ReadsAsciiPolyData) {
   expect_three_particles(read_vtk(p, &attrs));
   ASSERT_EQ(attrs.size(), 3u);
   EXPECT_EQ(attrs[2].name, "density");
+}
+
+// Every name of the one attribute table (io/attribute_names.h), in both VTK readers. Each file also
+// holds the table's last velocity name first, with other values: the name the table prefers is read,
+// wherever it lies in the file.
+TEST(Vtk, BothReadersReadEveryNameOfTheAttributeTable) {
+  TempDir dir;
+  const auto velocity = io::attribute_names(io::AttributeRole::Velocity), id = io::attribute_names(io::AttributeRole::Id),
+             mass = io::attribute_names(io::AttributeRole::Mass);
+  const std::string decoy(velocity.back());
+  for (size_t k = 0; k < std::max({velocity.size(), id.size(), mass.size()}); ++k) {
+    const std::string v(velocity[k % velocity.size()]), i(id[k % id.size()]), m(mass[k % mass.size()]);
+    SCOPED_TRACE(v + ", " + i + ", " + m);
+    const std::string legacy = "# vtk DataFile Version 3.0\nnames\nASCII\nDATASET POLYDATA\nPOINTS 3 float\n"
+                               "0 0 0 1 2 3 -1 0.5 0.25\nPOINT_DATA 3\n" +
+                               (v == decoy ? "" : "VECTORS " + decoy + " float\n7 7 7 7 7 7 7 7 7\n") +
+                               "SCALARS " + i + " int 1\nLOOKUP_TABLE default\n30 20 10\n"
+                               "VECTORS " + v + " float\n1 0 0 0 1 0 0 0 1\n"
+                               "SCALARS " + m + " float 1\nLOOKUP_TABLE default\n0.5 0.5 0.5\n";
+    const FluidFrame a = read_vtk(dir.write("k" + std::to_string(k) + ".vtk", legacy));
+    expect_three_particles(a);
+    EXPECT_EQ(a.masses, (std::vector<float>(3, 0.5f)));
+    auto array = [](const std::string& type, const std::string& name, int comps, const std::string& values) {
+      return "<DataArray type=\"" + type + "\" Name=\"" + name + "\" NumberOfComponents=\"" + std::to_string(comps) +
+             "\" format=\"ascii\">" + values + "</DataArray>\n";
+    };
+    const std::string xml = vtu("byte_order=\"LittleEndian\"",
+                                "<DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">\n"
+                                "0 0 0 1 2 3 -1 0.5 0.25\n</DataArray>\n",
+                                (v == decoy ? "" : array("Float32", decoy, 3, "7 7 7 7 7 7 7 7 7")) +
+                                    array("Int32", i, 1, "30 20 10") + array("Float32", v, 3, "1 0 0 0 1 0 0 0 1") +
+                                    array("Float32", m, 1, "0.5 0.5 0.5"));
+    const FluidFrame b = read_vtu(dir.write("k" + std::to_string(k) + ".vtu", xml));
+    expect_three_particles(b);
+    EXPECT_EQ(b.masses, (std::vector<float>(3, 0.5f)));
+  }
 }
 
 TEST(Vtk, ReadsAsciiUnstructuredGridWithFieldDataAndVersion51Cells) {
