@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "sim/core/error.h"
 #include "sim/core/frames.h"
@@ -54,7 +55,7 @@ TEST(HostileInputs, SmallAddressSpacesGiveAnAnswerOrAMessageNeverAnAbort) {
   write_ply(dir / "two.ply", two);
   for (const int kib : {300000, 400000, 500000, 700000, 1048576}) {
     const SpumeOptions limit = SpumeOptions::after(str("ulimit -v ", kib));
-    for (const std::string command : {"--version", "info " + (dir / "two.ply").string()}) {
+    for (const std::string& command : std::vector<std::string>{"--version", "info " + (dir / "two.ply").string()}) {
       const CommandResult r = run_spume(command, limit);
       const std::string at = str("ulimit -v ", kib, ", spume ", command, ": ");
       if (kib == 1048576) EXPECT_EQ(r.status, 0) << at << r.output;
