@@ -14,7 +14,7 @@
 #include "sim/core/error.h"
 #include "render/app/farm/farm_plan.h"
 #include "render/app/farm/slurm_script.h"
-#include "sim/pipeline/simulate_scene.h"
+#include "sim/stage/simulate_scene.h"
 #include "render/stage/render_stage.h"
 #include "render/app/scene/scene_args.h"
 
@@ -114,7 +114,7 @@ int farm_slurm(const cli::ParsedArgs& args) {
   const std::vector<std::string> scene = scene_arguments(args, setup);
   farm.render_command = {spume, "render"};
   farm.render_command.insert(farm.render_command.end(), scene.begin(), scene.end());
-  SimulateOptions current;
+  DiffuseStageOptions current;
   current.out_root = setup.out_root;
   const bool simulated = scene_simulation_is_current(setup.sim, current);
   if (!simulated) {

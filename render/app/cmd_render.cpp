@@ -8,7 +8,7 @@
 #include "sim/core/frame_spec.h"
 #include "render/app/commands.h"
 #include "sim/core/error.h"
-#include "sim/pipeline/simulate_scene.h"
+#include "sim/stage/simulate_scene.h"
 #include "render/app/movie.h"
 #include "render/app/scene/scene_render.h"
 #include "render/stage/render_stage.h"
@@ -71,7 +71,7 @@ int render(const cli::ParsedArgs& args) {
 int run(const cli::ParsedArgs& args) {
   if (auto frames = args.value("frames")) cli::check_frame_spec(*frames, "--frames");
   const SceneSetup setup = load_scene_setup(args);
-  SimulateOptions sim;
+  DiffuseStageOptions sim;
   sim.out_root = setup.out_root;
   sim.quiet = setup.quiet;
   sim.force = args.has("force");

@@ -4,7 +4,7 @@
 #include "render/app/cli/cli_args.h"
 #include "render/app/commands.h"
 #include "sim/core/error.h"
-#include "sim/pipeline/simulate_scene.h"
+#include "sim/stage/simulate_scene.h"
 #include "render/app/scene/scene_args.h"
 #include "render/app/scene/scene_lock.h"
 
@@ -18,7 +18,7 @@ int simulate(const cli::ParsedArgs& args) {
   if (args.has("bgeo")) overrides.push_back("output.bgeo=true");
   if (args.has("vdb")) overrides.push_back("output.vdb=true");
   const SceneSetup setup = load_scene_setup(args, overrides);
-  SimulateOptions sim;
+  DiffuseStageOptions sim;
   sim.out_root = setup.out_root;
   sim.quiet = setup.quiet;
   sim.force = args.has("force");

@@ -15,8 +15,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "render/pipeline/frame_renderer.h"
-#include "render/pipeline/render_settings.h"
+#include "render/frame/frame_renderer.h"
+#include "render/frame/render_settings.h"
 #include "render/stage/render_scene.h"
 
 namespace spume {

@@ -5,7 +5,7 @@
 // pass nor as opaque blockers of the volume pass.
 #include <vector>
 
-#include "render/pipeline/frame_renderer.h"
+#include "render/frame/frame_renderer.h"
 #include "sim/geometry/solids.h"
 
 namespace spume {

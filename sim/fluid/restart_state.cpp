@@ -34,10 +34,11 @@ std::string header_of(const FluidRestartState& s) {
   std::string digest = s.digest.substr(0, kDigestSize);
   digest.resize(kDigestSize, '\0');
   h += digest;
-  for (uint64_t c : {s.steps, s.density_iterations, s.divergence_iterations, s.density_unconverged,
-                     s.divergence_unconverged, s.corrections, s.dt_clamped_to_min})
-    io::store(h, c, Endian::Little);
-  for (double d : {s.dt_sum, s.density_error, s.max_density_error, s.divergence_error, s.min_dt_used, s.max_dt_used})
+  const SolverCounters& c = s.counters;
+  for (uint64_t count : {c.steps, c.density_iterations, c.divergence_iterations, c.density_unconverged,
+                         c.divergence_unconverged, c.corrections, c.dt_clamped_to_min})
+    io::store(h, count, Endian::Little);
+  for (double d : {c.dt_sum, c.density_error, c.max_density_error, c.divergence_error, c.min_dt_used, c.max_dt_used})
     io::store(h, d, Endian::Little);
   return h;
 }
@@ -83,11 +84,12 @@ FluidRestartState read_restart_state(const std::filesystem::path& path) {
   const uint64_t n = r.read<uint64_t>("count");
   const std::string_view digest = r.take(kDigestSize, "digest");
   s.digest = std::string(digest.substr(0, digest.find('\0')));
-  for (uint64_t* c : {&s.steps, &s.density_iterations, &s.divergence_iterations, &s.density_unconverged,
-                      &s.divergence_unconverged, &s.corrections, &s.dt_clamped_to_min})
-    *c = r.read<uint64_t>("counters");
-  for (double* d : {&s.dt_sum, &s.density_error, &s.max_density_error, &s.divergence_error, &s.min_dt_used,
-                    &s.max_dt_used})
+  SolverCounters& c = s.counters;
+  for (uint64_t* count : {&c.steps, &c.density_iterations, &c.divergence_iterations, &c.density_unconverged,
+                          &c.divergence_unconverged, &c.corrections, &c.dt_clamped_to_min})
+    *count = r.read<uint64_t>("counters");
+  for (double* d : {&c.dt_sum, &c.density_error, &c.max_density_error, &c.divergence_error, &c.min_dt_used,
+                    &c.max_dt_used})
     *d = r.read<double>("statistics");
   const uint64_t per_particle = 4 + 12 + 12 + (flags & kHasWarmStart ? 8 : 0);
   if (n > r.remaining() / per_particle || n * per_particle != r.remaining())

@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "sim/core/vec.h"
+#include "sim/fluid/solver_counters.h"
 
 namespace spume {
 
@@ -44,11 +45,7 @@ struct FluidRestartState {
   double dt_prev = 0.0;  // s
   float particle_radius = 0.0f;
   std::string digest;    // up to 16 characters
-  // Counters (SolverStats and the sums behind its averages).
-  uint64_t steps = 0, density_iterations = 0, divergence_iterations = 0, density_unconverged = 0,
-           divergence_unconverged = 0, corrections = 0, dt_clamped_to_min = 0;
-  double dt_sum = 0.0, density_error = 0.0, max_density_error = 0.0, divergence_error = 0.0, min_dt_used = 0.0,
-         max_dt_used = 0.0;
+  SolverCounters counters;  // behind SolverStats (solver_counters.h)
   // Per particle, in solver order; the warm-start arrays empty when warm start is off.
   std::vector<uint32_t> ids;
   std::vector<Vec3f> positions, velocities;

@@ -133,9 +133,9 @@ double FluidSolver::step_to(double target) {
   if (params_.divergence_solve) {
     StageTimer timer(seconds[size_t(FluidStage::Divergence)]);
     const fluid::SolveResult r = fluid::divergence_solve(params_, neighbourhoods_, boundary_, dt_prev_, p, walls_ptr());
-    divergence_iterations_ += uint64_t(r.iterations);
-    stats_.divergence_error = r.error;
-    stats_.divergence_unconverged += r.converged ? 0 : 1;
+    counters_.divergence_iterations += uint64_t(r.iterations);
+    counters_.divergence_error = r.error;
+    counters_.divergence_unconverged += r.converged ? 0 : 1;
     if (coupled) fluid::add_pressure_impulse(neighbourhoods_, boundary_, walls_ptr(), coupling_, particle_mass, dt_prev_, p, loads_);
   }
 
@@ -146,7 +146,7 @@ double FluidSolver::step_to(double target) {
     if (coupled)
       fluid::add_viscous_force(params_, neighbourhoods_, boundary_, coupling_, particle_mass, kernel_.h, p, loads_);
     const fluid::TimeStepChoice choice = fluid::cfl_time_step(params_, p, dt_prev_, solids_, time_, body_speed());
-    stats_.dt_clamped_to_min += choice.clamped_to_min ? 1 : 0;
+    counters_.dt_clamped_to_min += choice.clamped_to_min ? 1 : 0;
     dt = fluid::fit_to_remaining(choice.dt, target - time_);
   }
   const double t_end = dt == target - time_ ? target : time_ + dt;
@@ -161,11 +161,11 @@ double FluidSolver::step_to(double target) {
     });
     if (boundary_.any_moving) fluid::set_boundary_velocity(boundary_, step_placements(time_, t_end));
     const fluid::SolveResult r = fluid::density_solve(params_, neighbourhoods_, boundary_, dt, p, walls_ptr());
-    density_iterations_ += uint64_t(r.iterations);
+    counters_.density_iterations += uint64_t(r.iterations);
     density_error = r.error;
-    stats_.density_error = r.error;
-    stats_.max_density_error = std::max(stats_.max_density_error, r.error);
-    stats_.density_unconverged += r.converged ? 0 : 1;
+    counters_.density_error = r.error;
+    counters_.max_density_error = std::max(counters_.max_density_error, r.error);
+    counters_.density_unconverged += r.converged ? 0 : 1;
     if (coupled) fluid::add_pressure_impulse(neighbourhoods_, boundary_, walls_ptr(), coupling_, particle_mass, dt, p, loads_);
   }
 
@@ -189,10 +189,10 @@ double FluidSolver::step_to(double target) {
   }
 
   dt_prev_ = dt;
-  ++stats_.steps;
-  dt_sum_ += dt;
-  stats_.min_dt_used = stats_.steps == 1 ? dt : std::min(stats_.min_dt_used, dt);
-  stats_.max_dt_used = std::max(stats_.max_dt_used, dt);
+  ++counters_.steps;
+  counters_.dt_sum += dt;
+  counters_.min_dt_used = counters_.steps == 1 ? dt : std::min(counters_.min_dt_used, dt);
+  counters_.max_dt_used = std::max(counters_.max_dt_used, dt);
   update_neighbourhoods();
   return dt;
 }
@@ -219,7 +219,7 @@ void FluidSolver::project_out_of_solids() {
     for (size_t i = b; i < e; ++i) count += now.push_out(p.x[i], p.v[i], skin) ? 1.0 : 0.0;
     return count;
   });
-  stats_.corrections += uint64_t(moved);
+  counters_.corrections += uint64_t(moved);
 }
 
 FluidRestartState FluidSolver::restart_state(int frame) const {
@@ -229,19 +229,7 @@ FluidRestartState FluidSolver::restart_state(int frame) const {
   s.time = time_;
   s.dt_prev = dt_prev_;
   s.particle_radius = params_.particle_radius;
-  s.steps = stats_.steps;
-  s.density_iterations = density_iterations_;
-  s.divergence_iterations = divergence_iterations_;
-  s.density_unconverged = stats_.density_unconverged;
-  s.divergence_unconverged = stats_.divergence_unconverged;
-  s.corrections = stats_.corrections;
-  s.dt_clamped_to_min = stats_.dt_clamped_to_min;
-  s.dt_sum = dt_sum_;
-  s.density_error = stats_.density_error;
-  s.max_density_error = stats_.max_density_error;
-  s.divergence_error = stats_.divergence_error;
-  s.min_dt_used = stats_.min_dt_used;
-  s.max_dt_used = stats_.max_dt_used;
+  s.counters = counters_;
   s.ids = p.id;
   s.positions = p.x;
   s.velocities = p.v;
@@ -280,19 +268,7 @@ void FluidSolver::restore(const FluidRestartState& s) {
   }
   time_ = s.time;
   dt_prev_ = s.dt_prev;
-  stats_.steps = s.steps;
-  density_iterations_ = s.density_iterations;
-  divergence_iterations_ = s.divergence_iterations;
-  stats_.density_unconverged = s.density_unconverged;
-  stats_.divergence_unconverged = s.divergence_unconverged;
-  stats_.corrections = s.corrections;
-  stats_.dt_clamped_to_min = s.dt_clamped_to_min;
-  dt_sum_ = s.dt_sum;
-  stats_.density_error = s.density_error;
-  stats_.max_density_error = s.max_density_error;
-  stats_.divergence_error = s.divergence_error;
-  stats_.min_dt_used = s.min_dt_used;
-  stats_.max_dt_used = s.max_dt_used;
+  counters_ = s.counters;
   // The particles come in the order the grid sorted them into, and sorting them again keeps it (the
   // sort breaks ties by index), so the grid, pairs and their summation order are the saved run's.
   fluid::place_boundary(boundary_, placements_at(time_), false);
@@ -340,11 +316,22 @@ FluidSequenceInfo FluidSolver::info(double fps) const {
 
 SolverStats FluidSolver::stats() const {
   SolverStats s = stats_;
+  const SolverCounters& c = counters_;
   s.time = time_;
-  if (s.steps) {
-    s.average_dt = dt_sum_ / double(s.steps);
-    s.average_density_iterations = double(density_iterations_) / double(s.steps);
-    s.average_divergence_iterations = double(divergence_iterations_) / double(s.steps);
+  s.steps = c.steps;
+  s.min_dt_used = c.min_dt_used;
+  s.max_dt_used = c.max_dt_used;
+  s.density_error = c.density_error;
+  s.max_density_error = c.max_density_error;
+  s.divergence_error = c.divergence_error;
+  s.density_unconverged = c.density_unconverged;
+  s.divergence_unconverged = c.divergence_unconverged;
+  s.corrections = c.corrections;
+  s.dt_clamped_to_min = c.dt_clamped_to_min;
+  if (c.steps) {
+    s.average_dt = c.dt_sum / double(c.steps);
+    s.average_density_iterations = double(c.density_iterations) / double(c.steps);
+    s.average_divergence_iterations = double(c.divergence_iterations) / double(c.steps);
   }
   return s;
 }

@@ -125,9 +125,8 @@ class FluidSolver {
   fluid::BlowUpLimits limits_;
   double time_ = 0.0;
   double dt_prev_;
-  SolverStats stats_;
-  double dt_sum_ = 0.0;
-  uint64_t density_iterations_ = 0, divergence_iterations_ = 0;
+  SolverStats stats_;        // what stats() reports beyond counters_: particle counts, stage times
+  SolverCounters counters_;  // step to step: behind stats() and carried by restart_state()
 };
 
 }  // namespace spume

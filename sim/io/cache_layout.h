@@ -4,7 +4,7 @@
 //   fluid/fluid_0000.spf      solver scenes: the fluid per frame        fluid/record.json
 //   fluid/restart_0000.spr    the solver's state at the last frame      fluid/bodies.csv
 //   fluid_bgeo/fluid_0000.bgeo, diffuse/diffuse_0000.spd, diffuse_bgeo/diffuse_0000.bgeo, diffuse/record.json
-//   diffuse_vdb/diffuse_0000.vdb and diffuse_vdb/record.json (output.vdb: pipeline/vdb_export.h)
+//   diffuse_vdb/diffuse_0000.vdb and diffuse_vdb/record.json (output.vdb: stage/vdb_export.h)
 //   fluid_survey.json         every fluid frame's identity and bounds (io/fluid_survey.h)
 //   render_stats.csv          the render's milliseconds per stage, one row per frame drawn
 #include <filesystem>

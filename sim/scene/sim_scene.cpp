@@ -171,7 +171,7 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
   keys["diffuse"] = root.effective("diffuse");
   keys["domain"] = root.effective("domain");
   keys["output"] = root.effective("output");
-  if (keys["output"].is_object()) keys["output"].erase("vdb");  // made from the diffuse caches, with its own record (pipeline/vdb_export.h)
+  if (keys["output"].is_object()) keys["output"].erase("vdb");  // made from the diffuse caches, with its own record (stage/vdb_export.h)
   scene.diffuse_keys = with_generation(keys);
   return scene;
 }

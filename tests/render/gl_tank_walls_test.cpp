@@ -10,7 +10,7 @@
 #include "sim/core/error.h"
 #include "render/gl/surface_pass.h"
 #include "render/image/png_io.h"
-#include "render/pipeline/frame_renderer.h"
+#include "render/frame/frame_renderer.h"
 #include "render/stage/solid_meshes.h"
 
 namespace spume {

@@ -128,7 +128,7 @@ TEST(Layout, TheSourcesIncludeInOneDirectionFromTheRepositoryRoot) {
   const Layout layout = read_layout(SPUME_SOURCE_DIR);
   ASSERT_TRUE(layout.edges.count("render/app"));
   EXPECT_TRUE(layout.edges.at("render/app").count("render/stage"));
-  EXPECT_TRUE(layout.edges.at("render/app").count("sim/pipeline"));
+  EXPECT_TRUE(layout.edges.at("render/app").count("sim/stage"));
 }
 
 // The check itself, on a small tree with each kind of violation planted.

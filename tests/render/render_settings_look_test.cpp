@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "sim/core/error.h"
-#include "render/pipeline/render_settings.h"
+#include "render/frame/render_settings.h"
 
 namespace spume {
 namespace {

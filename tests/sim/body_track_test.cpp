@@ -9,8 +9,8 @@
 
 #include "sim/core/error.h"
 #include "sim/fluid/solver.h"
-#include "sim/pipeline/body_track_file.h"
-#include "sim/pipeline/simulate_scene.h"
+#include "sim/stage/body_track_file.h"
+#include "sim/stage/simulate_scene.h"
 #include "tests/support/temp_dir.h"
 
 namespace spume {
@@ -114,7 +114,7 @@ TEST(BodyTrackStage, FluidStageWritesTheSolversPosesPerFrame) {
   })");
   const ParamReader root = ParamReader::from_json(json, "drop.json");
   const SimScene scene = read_sim_scene(root, ".", "drop");
-  SimulateOptions options;
+  DiffuseStageOptions options;
   options.out_root = out;
   options.quiet = true;
   simulate_scene(scene, options);

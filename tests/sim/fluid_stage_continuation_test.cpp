@@ -12,8 +12,8 @@
 #include <unistd.h>
 
 #include "sim/core/parallel.h"
-#include "sim/pipeline/fluid_continuation.h"
-#include "sim/pipeline/fluid_stage.h"
+#include "sim/stage/fluid_continuation.h"
+#include "sim/stage/fluid_stage.h"
 #include "tests/support/temp_dir.h"
 #include "tests/support/written_files.h"
 

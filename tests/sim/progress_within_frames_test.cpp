@@ -10,7 +10,7 @@
 #include <unistd.h>
 
 #include "sim/core/progress.h"
-#include "sim/pipeline/fluid_stage.h"
+#include "sim/stage/fluid_stage.h"
 #include "tests/support/temp_dir.h"
 
 namespace spume {
@@ -59,7 +59,7 @@ TEST(ProgressWithinFrames, PartialLinesNameTheItemUnderWayAndAreThrottled) {
             "");
 }
 
-// The tiny falling cube of pipeline_stages_test.cpp, frames 0-3 at 20 fps (about 10 steps a frame).
+// The tiny falling cube of stages_test.cpp, frames 0-3 at 20 fps (about 10 steps a frame).
 SimScene tiny() {
   const Json json = Json::parse(R"({
     "name": "tiny",

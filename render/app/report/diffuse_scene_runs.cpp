@@ -5,15 +5,15 @@
 // on a coarse grid.
 #include <cmath>
 
-#include "sim/pipeline/scene_inputs.h"
+#include "sim/stage/scene_inputs.h"
 #include "render/app/scene/scene_args.h"
 #include "sim/core/error.h"
 #include "sim/core/stopwatch.h"
 #include "sim/diffuse/simulator.h"
 #include "render/app/report/diffuse_runs.h"
 #include "sim/io/spume_cache.h"
-#include "sim/pipeline/simulate_run.h"
-#include "sim/pipeline/simulate_scene.h"
+#include "sim/stage/diffuse_stage.h"
+#include "sim/stage/simulate_scene.h"
 
 namespace spume::report {
 namespace {
@@ -39,7 +39,7 @@ struct Grid {
 SceneWindow scene_runs(const StudyContext& c, const SceneSetup& setup, int last, int frames) {
   const SimScene& scene = setup.sim;
   auto source = scene_fluid_source(scene, setup.out_root);
-  const std::vector<int> all = diffuse_frames_to_run(scene, *source, SimulateOptions{});
+  const std::vector<int> all = diffuse_frames_to_run(scene, *source, DiffuseStageOptions{});
   const int first = std::max(all.front(), last - frames);
   if (first >= last) fail("diffuse study: frame ", last, " has no earlier frame to start from");
   std::vector<FluidFrame> fluid;

@@ -4,7 +4,7 @@
 #include <sstream>
 
 #include "sim/core/error.h"
-#include "sim/pipeline/simulate_scene.h"
+#include "sim/stage/simulate_scene.h"
 
 namespace spume::report {
 
@@ -14,7 +14,7 @@ SceneSetup load_report_scene(const StudyContext& c) {
   args.values["out"] = {c.out_root.string()};
   if (c.quiet) args.values["quiet"];
   const SceneSetup setup = load_scene_setup(args);
-  SimulateOptions options;
+  DiffuseStageOptions options;
   options.out_root = setup.out_root;
   options.quiet = c.quiet;
   const SceneSimulation done = simulate_scene(setup.sim, options, true);

@@ -11,7 +11,7 @@
 #include "sim/core/error.h"
 #include "sim/core/stopwatch.h"
 #include "render/image/image.h"
-#include "render/pipeline/frame_renderer.h"
+#include "render/frame/frame_renderer.h"
 #include "render/app/report/report_scene.h"
 #include "render/surface/reconstruct.h"
 #include "render/volume/composite.h"

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "render/app/cli/cli_args.h"
-#include "render/pipeline/render_settings.h"
+#include "render/frame/render_settings.h"
 #include "sim/scene/sim_scene.h"
 
 namespace spume {

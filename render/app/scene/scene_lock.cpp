@@ -4,7 +4,7 @@
 
 #include "sim/core/atomic_file.h"
 #include "sim/io/stage_record.h"
-#include "sim/pipeline/simulate_scene.h"
+#include "sim/stage/simulate_scene.h"
 
 namespace spume {
 

@@ -5,10 +5,10 @@
 #include "sim/core/error.h"
 #include "sim/core/messages.h"
 #include "sim/io/cache_layout.h"
-#include "sim/pipeline/body_track_file.h"
-#include "sim/pipeline/fluid_stage.h"
-#include "sim/pipeline/simulate_run.h"
-#include "sim/pipeline/simulate_scene.h"
+#include "sim/stage/body_track_file.h"
+#include "sim/stage/fluid_stage.h"
+#include "sim/stage/diffuse_stage.h"
+#include "sim/stage/simulate_scene.h"
 
 namespace spume {
 
@@ -27,7 +27,7 @@ SceneRender scene_render(const SimScene& scene, const std::filesystem::path& out
            "); run `spume simulate` or `spume run` first");
   }
   s.fluid = scene_fluid_source(scene, out_root);
-  s.frames = diffuse_frames_to_run(scene, *s.fluid, SimulateOptions{});
+  s.frames = diffuse_frames_to_run(scene, *s.fluid, DiffuseStageOptions{});
   s.bodies = scene_body_track(scene, s.scene_out);
   r.inputs = read_scene_inputs(scene, out_root, true);
   s.fluid_pattern = r.inputs.survey.pattern;

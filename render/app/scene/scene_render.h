@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <vector>
 
-#include "render/pipeline/render_settings.h"
-#include "sim/pipeline/scene_inputs.h"
+#include "render/frame/render_settings.h"
+#include "sim/stage/scene_inputs.h"
 #include "sim/scene/sim_scene.h"
 #include "render/stage/render_scene.h"
 

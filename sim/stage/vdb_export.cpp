@@ -1,4 +1,4 @@
-#include "sim/pipeline/vdb_export.h"
+#include "sim/stage/vdb_export.h"
 
 #include <algorithm>
 #include <map>

@@ -8,9 +8,9 @@
 
 #include "sim/fluid/solver.h"
 #include "sim/io/spume_cache.h"
-#include "sim/pipeline/cache_state.h"
-#include "sim/pipeline/fluid_stage.h"
-#include "sim/pipeline/simulate_scene.h"
+#include "sim/stage/cache_state.h"
+#include "sim/stage/fluid_stage.h"
+#include "sim/stage/simulate_scene.h"
 #include "tests/support/csv.h"
 #include "tests/support/temp_dir.h"
 #include "tests/support/written_files.h"
@@ -45,7 +45,7 @@ class PipelineStages : public ::testing::Test {
   }
   const testing::TempDir temp;
   const fs::path& out = temp.path;
-  SimulateOptions options;
+  DiffuseStageOptions options;
 };
 
 TEST_F(PipelineStages, FluidCachesHoldTheSolverStateAtEachFrameTime) {

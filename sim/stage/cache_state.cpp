@@ -1,4 +1,4 @@
-#include "sim/pipeline/cache_state.h"
+#include "sim/stage/cache_state.h"
 
 #include "sim/core/error.h"
 

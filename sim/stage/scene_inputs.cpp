@@ -1,11 +1,11 @@
-#include "sim/pipeline/scene_inputs.h"
+#include "sim/stage/scene_inputs.h"
 
 #include <cstdio>
 
 #include "sim/core/error.h"
 #include "sim/core/messages.h"
 #include "sim/io/frame_pattern.h"
-#include "sim/pipeline/fluid_stage.h"
+#include "sim/stage/fluid_stage.h"
 #include "sim/scene/container.h"
 #include "sim/scene/tank_fit.h"
 #include "sim/scene/velocity_check.h"

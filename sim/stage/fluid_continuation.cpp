@@ -1,4 +1,4 @@
-#include "sim/pipeline/fluid_continuation.h"
+#include "sim/stage/fluid_continuation.h"
 
 #include <cstdio>
 #include <fstream>
@@ -8,7 +8,7 @@
 #include "sim/io/frame_pattern.h"
 #include "sim/io/spume_cache.h"
 #include "sim/io/stage_record.h"
-#include "sim/pipeline/fluid_stage.h"
+#include "sim/stage/fluid_stage.h"
 
 namespace spume {
 namespace {

@@ -1,4 +1,4 @@
-#include "render/pipeline/render_settings.h"
+#include "render/frame/render_settings.h"
 
 #include <algorithm>
 #include <cctype>

@@ -1,4 +1,4 @@
-#include "sim/pipeline/simulate_scene.h"
+#include "sim/stage/simulate_scene.h"
 
 namespace spume {
 
@@ -15,13 +15,13 @@ std::vector<int> scene_frames(const SimScene& scene) {
     return frames;
   }
   return diffuse_frames_to_run(scene, *make_file_source(scene.file_pattern, scene.fluid.fps, scene.allow_gaps, scene.velocity_scale, scene.read),
-                               SimulateOptions{});
+                               DiffuseStageOptions{});
 }
 
 namespace {
 
 // The last fluid frame a run needs: the end of the asked range, not the scene's.
-FluidStageOptions fluid_options(const SimScene& scene, const SimulateOptions& options) {
+FluidStageOptions fluid_options(const SimScene& scene, const DiffuseStageOptions& options) {
   FluidStageOptions o;
   o.out_root = options.out_root;
   o.quiet = options.quiet;
@@ -33,7 +33,7 @@ FluidStageOptions fluid_options(const SimScene& scene, const SimulateOptions& op
 
 }  // namespace
 
-bool scene_simulation_is_current(const SimScene& scene, const SimulateOptions& options) {
+bool scene_simulation_is_current(const SimScene& scene, const DiffuseStageOptions& options) {
   if (scene.source == FluidSourceKind::Solver) {
     const int last = fluid_stage_last_frame(scene, fluid_options(scene, options));
     if (fluid_caches_match(scene, options.out_root, last).kind != RecordMatch::Kind::Current) return false;
@@ -44,14 +44,14 @@ bool scene_simulation_is_current(const SimScene& scene, const SimulateOptions& o
   return diffuse_vdb_current(scene, diffuse_frames_to_run(scene, *source, options), options.out_root / scene.name);
 }
 
-SceneSimulation simulate_scene(const SimScene& scene, const SimulateOptions& options, bool diffuse) {
+SceneSimulation simulate_scene(const SimScene& scene, const DiffuseStageOptions& options, bool diffuse) {
   SceneSimulation result;
   if (scene.source == FluidSourceKind::Solver) result.fluid = run_fluid_stage(scene, fluid_options(scene, options));
   if (diffuse) {
     auto source = scene_fluid_source(scene, options.out_root);
     const SceneInputs inputs = read_scene_inputs(scene, options.out_root, options.quiet);
     // New fluid frames have new file identities, which the diffuse record compares (io/stage_record.h).
-    result.diffuse = run_simulation(scene, inputs, *source, options);
+    result.diffuse = run_diffuse_stage(scene, inputs, *source, options);
     result.vdb = export_diffuse_vdb(scene, diffuse_frames_to_run(scene, *source, options),
                                     options.out_root / scene.name, options.quiet);
   }

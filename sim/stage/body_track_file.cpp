@@ -1,4 +1,4 @@
-#include "sim/pipeline/body_track_file.h"
+#include "sim/stage/body_track_file.h"
 
 #include <cerrno>
 #include <cmath>

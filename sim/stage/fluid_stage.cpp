@@ -1,12 +1,12 @@
-#include "sim/pipeline/fluid_stage.h"
+#include "sim/stage/fluid_stage.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 
-#include "sim/pipeline/body_track_file.h"
-#include "sim/pipeline/cache_state.h"
+#include "sim/stage/body_track_file.h"
+#include "sim/stage/cache_state.h"
 #include "sim/core/atomic_file.h"
 #include "sim/core/error.h"
 #include "sim/core/messages.h"
@@ -14,7 +14,7 @@
 #include "sim/core/progress.h"
 #include "sim/core/stopwatch.h"
 #include "sim/fluid/solver.h"
-#include "sim/pipeline/fluid_continuation.h"
+#include "sim/stage/fluid_continuation.h"
 #include "sim/io/bgeo.h"
 #include "sim/io/frame_pattern.h"
 #include "sim/io/cache_layout.h"

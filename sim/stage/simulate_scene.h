@@ -1,19 +1,19 @@
 #pragma once
 // Both simulation stages of a scene, each skipped when its caches are current:
 //   fluid   (solver scenes only) -> OUT/<scene>/fluid/      fluid_stage.h
-//   diffuse                      -> OUT/<scene>/diffuse/    simulate_run.h
+//   diffuse                      -> OUT/<scene>/diffuse/    diffuse_stage.h
 //   then, from the diffuse caches, OpenVDB points (output.vdb) -> OUT/<scene>/diffuse_vdb/  vdb_export.h
 #include <memory>
 
-#include "sim/pipeline/fluid_stage.h"
-#include "sim/pipeline/simulate_run.h"
-#include "sim/pipeline/vdb_export.h"
+#include "sim/stage/fluid_stage.h"
+#include "sim/stage/diffuse_stage.h"
+#include "sim/stage/vdb_export.h"
 
 namespace spume {
 
 struct SceneSimulation {
   FluidStageSummary fluid;     // frames == 0 when the fluid comes from files
-  SimulateSummary diffuse;     // frames == 0 when the diffuse stage was not asked for
+  DiffuseStageSummary diffuse;     // frames == 0 when the diffuse stage was not asked for
   VdbExportSummary vdb;        // output.vdb, after the diffuse stage (vdb_export.h)
 };
 
@@ -26,9 +26,9 @@ std::vector<int> scene_frames(const SimScene& scene);
 
 // Both stages' caches are current for `options.out_root` and `options.frames`: simulate_scene would
 // run nothing. Reads only fingerprints and directory listings.
-bool scene_simulation_is_current(const SimScene& scene, const SimulateOptions& options);
+bool scene_simulation_is_current(const SimScene& scene, const DiffuseStageOptions& options);
 
 // `diffuse`: false leaves the diffuse stage out (a scene that draws no diffuse material).
-SceneSimulation simulate_scene(const SimScene& scene, const SimulateOptions& options, bool diffuse = true);
+SceneSimulation simulate_scene(const SimScene& scene, const DiffuseStageOptions& options, bool diffuse = true);
 
 }  // namespace spume

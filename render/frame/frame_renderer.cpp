@@ -1,4 +1,4 @@
-#include "render/pipeline/frame_renderer.h"
+#include "render/frame/frame_renderer.h"
 
 
 #include <future>

@@ -11,20 +11,20 @@
 
 #include "sim/io/cache_layout.h"
 #include "sim/io/stage_record.h"
-#include "sim/pipeline/scene_inputs.h"
+#include "sim/stage/scene_inputs.h"
 #include "sim/io/fluid_source.h"
 #include "sim/scene/sim_scene.h"
 
 namespace spume {
 
-struct SimulateOptions {
+struct DiffuseStageOptions {
   std::filesystem::path out_root = "out";
   std::optional<std::pair<int, int>> frames;  // inclusive; overrides the scene's range
   bool quiet = false;
   bool force = false;  // simulate even when the diffuse caches are current (cache_state.h)
 };
 
-struct SimulateSummary {
+struct DiffuseStageSummary {
   bool reused = false;  // the caches were current; nothing ran
   int frames = 0;  // frames simulated (or, reused, found current)
   size_t max_diffuse = 0;
@@ -38,7 +38,7 @@ struct SimulateSummary {
 
 // The frames the stage covers: the source's frames within options.frames or else the scene's range.
 std::vector<int> diffuse_frames_to_run(const SimScene& scene, const FluidSource& source,
-                                       const SimulateOptions& options);
+                                       const DiffuseStageOptions& options);
 
 // What the stage makes for `frames` (io/stage_record.h): the diffuse keys, the domain and tanks the
 // inputs resolved to, each fluid frame's file, and the body track of dynamic solids.
@@ -46,12 +46,12 @@ StageRecord diffuse_stage_record(const SimScene& scene, const SceneInputs& input
                                  const std::filesystem::path& scene_out);
 RecordMatch diffuse_caches_match(const SimScene& scene, const SceneInputs& inputs, const std::vector<int>& frames,
                                  const std::filesystem::path& scene_out);
-// The caches run_simulation would make are on disk and current.
+// The caches run_diffuse_stage would make are on disk and current.
 bool diffuse_caches_current(const SimScene& scene, const SceneInputs& inputs, const FluidSource& source,
-                            const SimulateOptions& options);
+                            const DiffuseStageOptions& options);
 
 // `inputs`: read_scene_inputs of the scene (solids with an inferred tank, the domain).
-SimulateSummary run_simulation(const SimScene& scene, const SceneInputs& inputs, FluidSource& source,
-                               const SimulateOptions& options);
+DiffuseStageSummary run_diffuse_stage(const SimScene& scene, const SceneInputs& inputs, FluidSource& source,
+                               const DiffuseStageOptions& options);
 
 }  // namespace spume

@@ -11,7 +11,7 @@
 #include "render/camera/camera.h"
 #include "render/gl/surface_pass.h"
 #include "render/image/image.h"
-#include "render/pipeline/render_settings.h"
+#include "render/frame/render_settings.h"
 #include "render/surface/triangle_mesh.h"
 
 namespace spume {
