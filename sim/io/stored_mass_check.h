@@ -14,10 +14,11 @@ struct StoredMassCheck {
   std::string note;        // for the log ("" when there are no masses or they agree)
 };
 
-// The median of `frame`'s masses (read from `file`) against rest_density (2 radius)^3: within a
+// The median of `frame`'s masses (read from `file`; those of 0 or less, Houdini's "not set", left out:
+// the run weighs them with the implied mass) against rest_density (2 radius)^3: within a
 // factor 2 they are used (SPH codes give a particle 0.8 to 1 times that volume); beyond, a warning
 // with both numbers, the implied mass is used, and the message names fluid.rest_density, whose value
-// their median implies, for masses that are right.
+// their median implies, for masses that are right. When no mass is > 0, none is used.
 StoredMassCheck check_stored_masses(const FluidFrame& frame, const std::string& file, float radius,
                                     float rest_density);
 

@@ -7,8 +7,8 @@
 #include <utility>
 
 #include "sim/core/error.h"
-#include "sim/io/io_bytes.h"
 #include "sim/io/attribute_names.h"
+#include "sim/io/io_bytes.h"
 #include "sim/io/vtk.h"
 
 namespace spume {

@@ -38,10 +38,12 @@ inline constexpr float kSupportFactor = float(support_radius.value[0]);
 inline constexpr float support_radius_of(float r) { return kSupportFactor * r; }
 inline constexpr KeySpec fps{.path = "fluid.fps", .unit = "1/s", .value = {50}, .lo = 1e-3, .hi = 1e5,
                              .lo_bound = Closed, .hi_bound = Closed,
-                             .doc = "frames per second of the fluid frames (stored as double)"};
+                             .doc = "frames per second of the fluid frames (stored as double); files: a "
+                                    "Mantaflow cache's config gives it when not set, and one that disagrees stops"};
 inline constexpr KeySpec rest_density{.path = "fluid.rest_density", .unit = "kg/m^3", .value = {1000}, .lo = 0,
                                       .hi = 1e6, .lo_bound = Open, .hi_bound = Closed,
-                                      .doc = "rho0; uniform particle mass rho0 (2r)^3 when files carry none"};
+                                      .doc = "rho0; uniform particle mass rho0 (2r)^3 when files carry none, or "
+                                             "masses off by more than 2x from it (warned)"};
 inline constexpr KeySpec frames{.path = "fluid.frames", .type = Range, .value = {0, 100}, .lo = 0, .hi = 1e8,
                                 .lo_bound = Closed, .hi_bound = Closed,
                                 .default_text = "solver, from t = 0; files: every file found",
@@ -56,7 +58,8 @@ inline constexpr KeySpec velocity_scale{
 inline constexpr KeySpec up_axis{
     .path = "fluid.up_axis", .type = Choice, .choices = "auto|y|z",
     .doc = "files: the cache's up axis; z turns (x, y, z) into spume's Y-up (x, z, -y); auto is z for a Blender "
-           "Mantaflow cache (config/ beside data/), else y"};
+           "Mantaflow cache (config/ beside data/), y for Houdini's formats, else measured (a free fall, a "
+           "resting layer), else y"};
 inline constexpr KeySpec vdb_grid{.path = "fluid.vdb_grid", .type = Text, .default_text = "every point data grid",
                                   .doc = "files: the point data grid of a .vdb cache to read, by name"};
 inline constexpr KeySpec particles{

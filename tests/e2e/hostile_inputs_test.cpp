@@ -45,7 +45,7 @@ fs::path sparse_file(const fs::path& path, const std::string& head, uint64_t siz
 const SpumeOptions kSmallAddressSpace = SpumeOptions::after("ulimit -v 1000000");
 
 // Case 7. Under small address spaces (ulimit -v), --version and info answer, or exit 1 saying that the
-// limit leaves no room to start: never an abort or a crash. Below about 330 MB the libraries spume
+// limit leaves no room to start (or, below what the loader needs, 127 with its message): never an abort. Below about 330 MB the libraries spume
 // links cannot start the threads they start while loading (log4cplus, through OpenVDB, aborted there);
 // at 500 MB Mesa crashed creating the context --version asks for its version. With 1 GiB both answer.
 TEST(HostileInputs, SmallAddressSpacesGiveAnAnswerOrAMessageNeverAnAbort) {
@@ -59,6 +59,12 @@ TEST(HostileInputs, SmallAddressSpacesGiveAnAnswerOrAMessageNeverAnAbort) {
       const CommandResult r = run_spume(command, limit);
       const std::string at = str("ulimit -v ", kib, ", spume ", command, ": ");
       if (kib == 1048576) EXPECT_EQ(r.status, 0) << at << r.output;
+      // Below about 310 MB the dynamic loader itself cannot map spume's libraries and exits 127 with its
+      // own message, before any of spume's code runs: no abort, no core.
+      if (r.status == 127 && kib < 310000) {
+        EXPECT_TRUE(contains(r.output, "cannot allocate")) << at << r.output;
+        continue;
+      }
       ASSERT_TRUE(r.status == 0 || r.status == 1) << at << r.output;
       if (r.status == 1) {
         EXPECT_TRUE(contains(r.output, "spume: error: cannot start: a library failed while loading")) << at << r.output;

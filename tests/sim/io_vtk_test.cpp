@@ -339,7 +339,7 @@ TEST(VtkXml, RejectsBadFiles) {
     return m;
   };
   const std::string pts = "<DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0 1 2 3 -1 0.5 0.25</DataArray>";
-  EXPECT_NE(msg("a.vtu", "not xml").find("no <VTKFile>"), std::string::npos);
+  EXPECT_NE(msg("a.vtu", "not xml").find("not an XML VTK file"), std::string::npos);
   EXPECT_NE(msg("b.vtu", "<VTKFile type=\"ImageData\"></VTKFile>").find("ImageData"), std::string::npos);
   EXPECT_NE(msg("c.vtu", "<VTKFile type=\"UnstructuredGrid\"><Piece NumberOfPoints=\"3").find("malformed XML"), std::string::npos);
   EXPECT_NE(msg("d.vtu", vtu("", pts.substr(0, pts.size() - 16) + "</DataArray>", "")).find("truncated"), std::string::npos);

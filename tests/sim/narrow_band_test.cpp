@@ -2,6 +2,8 @@
 // surface must classify its interior as a full block does, and a full block must be left as it was.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <cstring>
 #include <random>
 
@@ -121,6 +123,30 @@ TEST(NarrowBand, FullBlockAndSmallAirPocketAreLeftAsTheyAre) {
     EXPECT_FALSE(stats.interior.narrow_band);
     EXPECT_EQ(stats.interior.filled, 0u);
   }
+}
+
+// Gaps of a cell between a band's particles do not open it to the air. The hollow cube's top band has
+// a vertical channel through it, 3 x 3 particle columns wide: 4 spacings (2 h) between the particles on
+// either side, so whatever the cells' offset a full cell lies in it on both axes across, and the channel
+// is a column of empty cells from the air to the interior. Each of those cells lies within h / 2 (one
+// spacing) of a particle beside the channel (by hand: a cell of h in a gap of 2 h ends at most h / 2
+// from its sides), so each is sealed: the interior stays enclosed, as a FLIP cache's band with a few
+// empty cells left by random seeding does.
+TEST(NarrowBand, AChannelOfEmptyCellsThroughTheBandDoesNotOpenIt) {
+  const int mid = 16;  // lattice index of the channel's middle column (the cube is 32 particles a side)
+  std::vector<Vec3f> band;
+  for (const Vec3f& p : cube(3 * kH, true)) {
+    const int i = int(std::lround(p.x() / kS)), k = int(std::lround(p.z() / kS));
+    const bool in_channel = std::abs(i - mid) <= 1 && std::abs(k - mid) <= 1 && p.y() > kSide - 3 * kH;
+    if (!in_channel) band.push_back(p);
+  }
+  InteriorFiller filler;
+  const InteriorFill fill = filler.examine(band, kH, Vec3f(0, -9.81f, 0), true);
+  EXPECT_TRUE(fill.large) << describe_interior(fill);
+  EXPECT_TRUE(fill.narrow_band) << describe_interior(fill);
+  // The enclosed cells: the interior inside the band, 31 - 2 x 6 = 19 spacings (9.5 h) a side, so at
+  // least 8 whole cells a side: over 8^3 = 512. Opened to the air, none would be.
+  EXPECT_GT(fill.enclosed_cells, 512u) << describe_interior(fill);
 }
 
 // The SPH block (r = 0.02, 1.2 x 0.8 x 0.8 m on a 2r lattice) with a spherical void of radius

@@ -38,5 +38,19 @@ TEST(StoredMassCheck, MassesNearTheImpliedOneAreUsedSilently) {
   EXPECT_TRUE(check_stored_masses(with_masses({}), "f", 0.02f, 1000.0f).use_stored);
 }
 
+// Houdini's -1 ("no mass set") is no mass: with some usable masses the median is theirs, and the run
+// weighs the -1 particles with the implied mass; with none, no stored mass is used. No advice to set a
+// negative rest density (-1 kg over 0.04^3 m^3 would be -15625).
+TEST(StoredMassCheck, MassesOfMinusOneAreNoMassesAndNeverNegativeAdvice) {
+  const StoredMassCheck some = check_stored_masses(with_masses({-1, -1, 0.064f}), "f", 0.02f, 1000.0f);
+  EXPECT_TRUE(some.use_stored);
+  EXPECT_EQ(some.note, "");
+  const StoredMassCheck none = check_stored_masses(with_masses({-1, -1, -1}), "f", 0.02f, 1000.0f);
+  EXPECT_FALSE(none.use_stored);
+  EXPECT_NE(none.note.find("3 of 3 masses are not > 0 (-1 kg)"), std::string::npos) << none.note;
+  EXPECT_NE(none.note.find("every particle weighs rho0 (2r)^3 = 0.064 kg"), std::string::npos) << none.note;
+  EXPECT_EQ(none.note.find("rest_density = -"), std::string::npos) << none.note;
+}
+
 }  // namespace
 }  // namespace spume
