@@ -41,6 +41,8 @@ Bytes json_bytes(const std::filesystem::path& path) {
   if (!has_scf_magic(head) && !io::has_gzip_magic(head) && !has_binary_json_magic(head) &&
       io::lower_file_name(path).ends_with(".bgeo.sc"))
     decompress_scf(head, where);  // says what a .bgeo.sc should start with
+  // A .bgeo.sc keeps its index at the end: a cut or damaged one is refused before the whole is read.
+  if (has_scf_magic(head)) check_scf_ends(head, io::read_file_tail(path, 12), std::filesystem::file_size(path), where);
   std::string file = io::read_file_bytes(path);
   Bytes b;
   if (has_scf_magic(file)) {

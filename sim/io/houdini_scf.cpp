@@ -44,16 +44,21 @@ Codec chunk_codec(uint8_t flags, size_t offset, const std::string& where) {
 
 bool has_scf_magic(std::string_view file) { return file.substr(0, 4) == "scf1"; }
 
-std::string decompress_scf(std::string_view file, const std::string& where, ScfStats* stats) {
-  if (!has_scf_magic(file)) fail(where, ": not a .bgeo.sc file: it must start with 'scf1'");
-  if (file.size() < kHeader + kTrailerFixed)
-    fail(where, ": truncated: ", file.size(), " bytes, too short for a .bgeo.sc file (header and index alone take ",
+uint64_t check_scf_ends(std::string_view head, std::string_view tail, uint64_t file_size, const std::string& where) {
+  if (!has_scf_magic(head)) fail(where, ": not a .bgeo.sc file: it must start with 'scf1'");
+  if (file_size < kHeader + kTrailerFixed || tail.size() < kTrailerFixed)
+    fail(where, ": truncated: ", file_size, " bytes, too short for a .bgeo.sc file (header and index alone take ",
          kHeader + kTrailerFixed, ")");
-  if (file.substr(file.size() - 4) != "1fcs")
+  if (tail.substr(tail.size() - 4) != "1fcs")
     fail(where, ": truncated or corrupt: a .bgeo.sc file ends with its index and the bytes '1fcs', which are missing");
-  const uint64_t index_bytes = io::load<uint64_t>(file.data() + file.size() - kTrailerFixed, io::Endian::Big);
-  if (index_bytes % 8 != 0 || index_bytes > file.size() - kHeader - kTrailerFixed)
-    fail(where, ": corrupt: the index at the end claims ", index_bytes, " bytes in a file of ", file.size());
+  const uint64_t index_bytes = io::load<uint64_t>(tail.data() + tail.size() - kTrailerFixed, io::Endian::Big);
+  if (index_bytes % 8 != 0 || index_bytes > file_size - kHeader - kTrailerFixed)
+    fail(where, ": corrupt: the index at the end claims ", index_bytes, " bytes in a file of ", file_size);
+  return index_bytes;
+}
+
+std::string decompress_scf(std::string_view file, const std::string& where, ScfStats* stats) {
+  const uint64_t index_bytes = check_scf_ends(file, file, file.size(), where);
   const size_t chunks_end = file.size() - kTrailerFixed - size_t(index_bytes);
 
   // All chunk headers first: nothing is decompressed from a file whose chunks do not fit.

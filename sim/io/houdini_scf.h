@@ -18,6 +18,11 @@ struct ScfStats {
 
 bool has_scf_magic(std::string_view file);
 
+// Its two ends checked before the whole file is read: the magic in `head` (its first bytes), and in
+// `tail` (its last 12 or more) the closing "1fcs" and an index that fits a file of `file_size` bytes.
+// Returns the index's size in bytes. `where` names the file in errors.
+uint64_t check_scf_ends(std::string_view head, std::string_view tail, uint64_t file_size, const std::string& where);
+
 // The decompressed bytes. Every chunk header is checked before anything is decompressed: it must lie
 // inside the file, and claim no more than its codec can code in its bytes (LZ4, Houdini's: 256 to 1;
 // the real files hold under 4 to 1). The output grows chunk by chunk, and each chunk must decompress to

@@ -40,6 +40,18 @@ std::string read_file_bytes(const std::filesystem::path& path) { return read_pre
 
 std::string read_file_head(const std::filesystem::path& path, size_t n) { return read_prefix(path, n); }
 
+std::string read_file_tail(const std::filesystem::path& path, size_t n) {
+  const std::string head = read_prefix(path, 0);  // the same checks and errors: exists, a file, readable
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  const std::streamoff size = in.tellg();
+  if (size < 0) fail(path.string(), ": cannot determine file size");
+  const uint64_t take = std::min<uint64_t>(uint64_t(size), n);
+  std::string bytes(size_t(take), '\0');
+  in.seekg(std::streamoff(uint64_t(size) - take), std::ios::beg);
+  if (take > 0 && !in.read(bytes.data(), std::streamsize(take))) fail(path.string(), ": read failed");
+  return bytes;
+}
+
 bool has_gzip_magic(std::string_view data) {
   return data.size() >= 2 && uint8_t(data[0]) == 0x1f && uint8_t(data[1]) == 0x8b;
 }

@@ -22,6 +22,8 @@ std::string read_file_bytes(const std::filesystem::path& path);
 // Its first n bytes (all of it when shorter): enough to check a magic number or a header before a
 // reader takes the whole file. Same errors as read_file_bytes.
 std::string read_file_head(const std::filesystem::path& path, size_t n);
+// Its last n bytes (all of it when shorter): for formats whose index lies at the end. Same errors.
+std::string read_file_tail(const std::filesystem::path& path, size_t n);
 
 bool has_gzip_magic(std::string_view data);
 // Decompresses a gzip stream (several concatenated members allowed); `where` names the file in errors.

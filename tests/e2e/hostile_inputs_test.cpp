@@ -180,6 +180,13 @@ TEST(HostileInputs, LargeFilesThatAreNotWhatTheyAreNamedAreRefusedOnTheirFirstBy
     EXPECT_TRUE(contains(r.output, p.string() + ": not a")) << r.output;
     EXPECT_FALSE(contains(r.output, "out of memory")) << r.output;
   }
+  // A .bgeo.sc keeps its index at its end: one cut short (no closing "1fcs") is refused from its two
+  // ends, before the 2 GiB between them are read.
+  const fs::path cut = sparse_file(dir / "cut.bgeo.sc", std::string("scf1") + std::string(8, '\0'), 2 * kGiB);
+  const CommandResult r = run_spume("info " + cut.string(), kSmallAddressSpace);
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_TRUE(contains(r.output, cut.string() + ": truncated or corrupt: a .bgeo.sc file ends with its index")) << r.output;
+  EXPECT_FALSE(contains(r.output, "out of memory")) << r.output;
 }
 
 // Case 10. A 4 MiB .bgeo.sc whose one LZ4 chunk claims 2 GiB decompressed: LZ4 codes at most 255 bytes
