@@ -10,8 +10,8 @@
 
 namespace spume {
 
-DiffuseRunNotes::DiffuseRunNotes(const SimScene& scene, Progress& progress, size_t frames)
-    : scene_(scene), progress_(progress), frames_(frames) {}
+DiffuseRunNotes::DiffuseRunNotes(const SimScene& scene, Progress& progress, size_t frames, bool solids)
+    : scene_(scene), progress_(progress), frames_(frames), solids_(solids) {}
 
 void DiffuseRunNotes::written(const FrameStats& stats, int frame) {
   if (stats.dropped > 0 && !warned_budget_) {
@@ -81,8 +81,11 @@ void DiffuseRunNotes::simulated(const FrameStats& stats, bool first, int next_fr
     if (++domain_warnings_ <= 3)
       messages::warning(str("frame ", stats.frame, " removed ", stats.removed, " diffuse particles outside the "
                             "domain, ", 100.0 * double(stats.removed) / double(stats.generated), "% of the ",
-                            stats.generated, " emitted; if the flow reaches beyond the domain, widen "
-                            "domain.min / domain.max"));
+                            stats.generated, " emitted; ",
+                            solids_ ? "if the flow reaches beyond the domain, widen domain.min / domain.max"
+                                    : "the run has no container (none given, none inferred: the log says why), so "
+                                      "spray falls through where the floor is; give it (--tank X0,Y0,Z0,X1,Y1,Z1 or "
+                                      "solids), or widen domain.min / domain.max"));
     if (domain_warnings_ == 3)
       messages::warning("more frames may lose diffuse particles to the domain: stats.csv counts them, column removed");
   }

@@ -13,8 +13,9 @@ namespace spume {
 
 class DiffuseRunNotes {
  public:
-  // `frames`: how many frames this run simulates.
-  DiffuseRunNotes(const SimScene& scene, Progress& progress, size_t frames);
+  // `frames`: how many frames this run simulates; `solids`: whether the run has any (a container, given
+  // or inferred, holds the diffuse particles as it holds the water).
+  DiffuseRunNotes(const SimScene& scene, Progress& progress, size_t frames, bool solids);
 
   // A frame's particles as handed over for writing (emission budget and caps).
   void written(const FrameStats& stats, int frame);
@@ -31,6 +32,7 @@ class DiffuseRunNotes {
   const SimScene& scene_;
   Progress& progress_;
   size_t frames_;
+  bool solids_;
   bool warned_budget_ = false, warned_cap_ = false, warned_band_skip_ = false, noted_pocket_ = false;
   bool warned_masses_ = false;
   int domain_warnings_ = 0;  // frames that lost more than 1% of what they emitted to the domain

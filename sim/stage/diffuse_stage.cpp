@@ -151,7 +151,7 @@ DiffuseStageSummary run_diffuse_stage(const SimScene& scene, const SceneInputs& 
                         [&](std::ostream& out) { out << diffuse_params_to_json(scene.diffuse).dump(2) << '\n'; });
   DiffuseStatsCsv stats_csv(summary.out_dir / "stats.csv",
                             first > 0 ? std::optional<int>(frames[first]) : std::nullopt);
-  DiffuseRunNotes notes(scene, progress, frames.size() - first);
+  DiffuseRunNotes notes(scene, progress, frames.size() - first, !inputs.solids.empty());
   BackgroundWriter writer;
   for (size_t k = first; k < frames.size(); ++k) {
     std::optional<FluidFrame> next;

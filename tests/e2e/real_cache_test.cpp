@@ -10,6 +10,7 @@
 #include "tests/support/csv.h"
 #include "tests/support/files.h"
 #include "tests/support/run_spume.h"
+#include "tests/support/text.h"
 #include "tests/support/temp_dir.h"
 #include "sim/io/spume_cache.h"
 
@@ -19,6 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 
 using testing::CommandResult;
+using testing::contains;
 using testing::run_spume;
 
 // Sums of two columns of stats.csv (generated, removed) over every frame.
@@ -67,6 +69,24 @@ TEST_F(RealCache, TheMovingCacheAloneKeepsWhatItEmits) {
   const auto [emitted, removed] = emitted_and_removed(dir / "alone/fluid/stats.csv");
   EXPECT_GT(emitted, 1000);
   EXPECT_LT(removed * 100, emitted) << removed << " of " << emitted;
+}
+
+// A domain lower than the splash loses diffuse particles, and the warning's advice depends on what holds
+// them: with the tank, widen the domain; with no container (--tank none), spray falls through where the
+// floor is, so the container is named first.
+TEST_F(RealCache, ADomainThatLosesParticlesIsAdvisedOnWhatHoldsThem) {
+  ASSERT_EQ(solved.status, 0) << solved.output;
+  const std::string low = " --set 'domain.min=[-1, -1, -1]' --set 'domain.max=[5, 0.3, 1.4]'";
+  for (const bool tank : {true, false}) {
+    SCOPED_TRACE(tank ? "the tank given" : "--tank none");
+    const CommandResult r = run_spume("simulate --fluid '" + bgeo_pattern() + "' --radius 0.04 --fps 25" +
+                                      std::string(tank ? " --tank 0,0,0,4,1.5,0.4" : " --tank none") + low + " --out " +
+                                      (dir / (tank ? "low_tank" : "low_none")).string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "diffuse particles outside the domain")) << r.output;
+    EXPECT_EQ(contains(r.output, "the run has no container"), !tank) << r.output;
+    EXPECT_EQ(contains(r.output, "emitted; if the flow reaches beyond the domain, widen"), tank) << r.output;
+  }
 }
 
 TEST_F(RealCache, WithTheTankGivenItMatchesTheSolverScenesDiffuseStage) {
