@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "render/app/commands.h"
+#include "render/app/process_hooks.h"
 #include "render/app/startup_guard.h"
 #include "sim/core/error.h"
 #include "sim/core/messages.h"
@@ -147,6 +148,7 @@ int dispatch(const std::vector<std::string>& argv) {
 
 int main(int argc, char** argv) {
   spume::end_startup_guard();
+  spume::install_process_hooks();
   spume::limit_threads_to_address_space();
   return spume::dispatch({argv + 1, argv + argc});
 }

@@ -19,8 +19,9 @@ inline void advise_huge_pages(void* p, size_t bytes) {
   if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
 }
 
-// While one of these lives (on any thread), operator new (allocation_budget.cpp) advises huge pages
-// for every block of kHugePageRequestBytes or more. For stages whose large arrays are fresh memory
+// While one of these lives (on any thread), the spume command's operator new
+// (render/app/process_hooks.cpp) advises huge pages for every block of kHugePageRequestBytes or
+// more; in other executables it does nothing. For stages whose large arrays are fresh memory
 // again and again: the diffuse stage's grow with the particle count, frame after frame, and their
 // page faults were a large share of a 15M frame. Not for the whole program: the fluid solver
 // allocates its arrays once, and ran slower in huge pages (tests/bench/RESULTS.md §3.2).

@@ -1,9 +1,9 @@
 // libFuzzer target: OpenVDB point caches (io/vdb_points.h) read directly and through the format dispatch
-// of `spume info`. Its allocations are bounded by the reader's budget (sim/core/allocation_budget.h). An
-// input that trips one of the assertions Debian's OpenVDB keeps ends the process with exit 1 and a
-// message naming the file (sim/io/library_abort_guard.h), which libFuzzer reports as the target exiting:
-// spume handles such inputs by design (tests/e2e/mantaflow_cache_test.cpp keeps one), so they are not
-// kept in regressions/.
+// of `spume info`. The allocation budget and the abort message that bound such reads in the spume
+// command (sim/core/allocation_budget.h, sim/io/library_abort_guard.h) take effect through the command's
+// own hooks (render/app/process_hooks.cpp), which a fuzzer does not link: here an input that trips one
+// of the assertions Debian's OpenVDB keeps aborts, and libFuzzer reports it. spume handles such inputs
+// by design (tests/e2e/mantaflow_cache_test.cpp keeps one), so they are not kept in regressions/.
 #include "tests/fuzz/fuzz_file.h"
 #include "sim/io/particle_file.h"
 #include "sim/io/vdb_points.h"

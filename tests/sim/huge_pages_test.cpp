@@ -56,29 +56,5 @@ TEST(HugePages, AdviceCoversTheWhole2MiBPagesInsideTheRangeAndNothingElse) {
   munmap(map, bytes);
 }
 
-TEST(HugePages, OperatorNewAdvisesLargeBlocksOnlyWhileAStageAsks) {
-  if (!kernel_has_huge_pages()) GTEST_SKIP() << "no transparent huge pages in this kernel";
-  // 64 MiB: above glibc's largest mmap threshold, so each block is a mapping of its own.
-  std::vector<float> before;
-  before.reserve(16 * kMiB);
-  EXPECT_FALSE(advised(reinterpret_cast<const char*>(before.data()) + 32 * kMiB));
-  std::vector<float> column;
-  {
-    const HugePagesForLargeBlocks scope;
-    column.reserve(16 * kMiB);
-  }
-  const char* middle = reinterpret_cast<const char*>(column.data()) + 32 * kMiB;
-  EXPECT_TRUE(advised(middle)) << vm_flags_at(middle);
-  std::vector<float> after;
-  after.reserve(16 * kMiB);
-  EXPECT_FALSE(advised(reinterpret_cast<const char*>(after.data()) + 32 * kMiB));
-  // A plain mapping of the same size is not advised: the flag is the advice's, not the kernel's default.
-  const size_t bytes = 64 * kMiB;
-  void* map = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-  ASSERT_NE(map, MAP_FAILED);
-  EXPECT_FALSE(advised(static_cast<char*>(map) + 32 * kMiB));
-  munmap(map, bytes);
-}
-
 }  // namespace
 }  // namespace spume

@@ -1,0 +1,84 @@
+// The spume command's operator new (render/app/process_hooks.cpp): it advises large blocks huge pages
+// while a stage asks for it, checked against the kernel's own account of the mapping (the "hg" flag of
+// /proc/self/smaps), and refuses what passes a thread's allocation budget. A binary of its own, since a
+// replacement operator new is a process-wide choice that the other test binaries must not make.
+#include <gtest/gtest.h>
+#include <sys/mman.h>
+
+#include <cstdint>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <new>
+#include <vector>
+
+#include "sim/core/allocation_budget.h"
+#include "sim/core/huge_pages.h"
+
+namespace spume {
+namespace {
+
+bool kernel_has_huge_pages() { return std::ifstream("/sys/kernel/mm/transparent_hugepage/enabled").good(); }
+
+// The VmFlags line of the mapping that holds address `a`; empty when no mapping holds it.
+std::string vm_flags_at(const void* a) {
+  const uintptr_t x = reinterpret_cast<uintptr_t>(a);
+  std::ifstream smaps("/proc/self/smaps");
+  std::string line;
+  bool inside = false;
+  while (std::getline(smaps, line)) {
+    uintptr_t begin = 0, end = 0;
+    char dash = 0;
+    std::istringstream range(line);
+    if (range >> std::hex >> begin >> dash >> end && dash == '-') {
+      inside = begin <= x && x < end;
+    } else if (inside && line.rfind("VmFlags:", 0) == 0) {
+      return line;
+    }
+  }
+  return {};
+}
+
+bool advised(const void* a) { return vm_flags_at(a).find(" hg") != std::string::npos; }
+
+constexpr size_t kMiB = size_t(1) << 20;
+
+TEST(HugePages, OperatorNewAdvisesLargeBlocksOnlyWhileAStageAsks) {
+  if (!kernel_has_huge_pages()) GTEST_SKIP() << "no transparent huge pages in this kernel";
+  // 64 MiB: above glibc's largest mmap threshold, so each block is a mapping of its own.
+  std::vector<float> before;
+  before.reserve(16 * kMiB);
+  EXPECT_FALSE(advised(reinterpret_cast<const char*>(before.data()) + 32 * kMiB));
+  std::vector<float> column;
+  {
+    const HugePagesForLargeBlocks scope;
+    column.reserve(16 * kMiB);
+  }
+  const char* middle = reinterpret_cast<const char*>(column.data()) + 32 * kMiB;
+  EXPECT_TRUE(advised(middle)) << vm_flags_at(middle);
+  std::vector<float> after;
+  after.reserve(16 * kMiB);
+  EXPECT_FALSE(advised(reinterpret_cast<const char*>(after.data()) + 32 * kMiB));
+  // A plain mapping of the same size is not advised: the flag is the advice's, not the kernel's default.
+  const size_t bytes = 64 * kMiB;
+  void* map = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  ASSERT_NE(map, MAP_FAILED);
+  EXPECT_FALSE(advised(static_cast<char*>(map) + 32 * kMiB));
+  munmap(map, bytes);
+}
+
+// 1 MiB of budget on this thread: a 2 MiB block is refused (std::bad_alloc, which a library unwinds
+// like any failed allocation) and the budget says so; after it, the same block is allocated.
+TEST(ProcessHooks, AnAllocationPastTheThreadsBudgetIsRefused) {
+  {
+    const AllocationBudget budget(kMiB);
+    std::vector<char> small(kMiB / 2);
+    EXPECT_FALSE(budget.exceeded());
+    EXPECT_THROW(std::vector<char>(2 * kMiB), std::bad_alloc);
+    EXPECT_TRUE(budget.exceeded());
+  }
+  EXPECT_NO_THROW(std::vector<char>(2 * kMiB));
+}
+
+}  // namespace
+}  // namespace spume
