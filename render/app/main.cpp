@@ -4,14 +4,16 @@
 #include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <string>
 #include <system_error>
 #include <vector>
 
 #include "render/app/commands.h"
-#include "render/app/process_hooks.h"
+#include "render/app/read_check_command.h"
 #include "render/app/startup_guard.h"
 #include "sim/core/error.h"
+#include "sim/io/contained_read.h"
 #include "sim/core/messages.h"
 #include "sim/core/out_of_memory.h"
 #include "sim/core/thread_budget.h"
@@ -148,7 +150,11 @@ int dispatch(const std::vector<std::string>& argv) {
 
 int main(int argc, char** argv) {
   spume::end_startup_guard();
-  spume::install_process_hooks();
+  if (argc > 1 && std::string(argv[1]) == spume::kReadCheckWord) return spume::run_read_check({argv + 2, argv + argc});
   spume::limit_threads_to_address_space();
+  // Files OpenVDB reads are read first by a child of this executable (sim/io/contained_read.h).
+  std::error_code self_error;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", self_error);
+  spume::contain_untrusted_reads(self_error ? std::filesystem::path(argv[0]) : self);
   return spume::dispatch({argv + 1, argv + argc});
 }

@@ -20,7 +20,7 @@ inline void advise_huge_pages(void* p, size_t bytes) {
 }
 
 // While one of these lives (on any thread), the spume command's operator new
-// (render/app/process_hooks.cpp) advises huge pages for every block of kHugePageRequestBytes or
+// (render/app/large_block_operator_new.cpp) advises huge pages for every block of kHugePageRequestBytes or
 // more; in other executables it does nothing. For stages whose large arrays are fresh memory
 // again and again: the diffuse stage's grow with the particle count, frame after frame, and their
 // page faults were a large share of a 15M frame. Not for the whole program: the fluid solver

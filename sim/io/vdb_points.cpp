@@ -13,11 +13,10 @@
 #include <openvdb/points/PointCount.h>
 #include <openvdb/points/PointDataGrid.h>
 
-#include "sim/core/allocation_budget.h"
 #include "sim/core/error.h"
 #include "sim/core/out_of_memory.h"
 #include "sim/io/attribute_names.h"
-#include "sim/io/library_abort_guard.h"
+#include "sim/io/contained_read.h"
 
 namespace spume {
 namespace {
@@ -174,13 +173,11 @@ GridRead read_vdb(const std::filesystem::path& path, const std::string& grid_nam
   GridRead all;
   int point_grids = 0, used_grids = 0, grids_with_velocity = 0, grids_with_ids = 0, grids_with_mass = 0;
   int diffuse_grids = 0;
-  // What a sound file can ask for: its points decompressed (Blosc rarely shrinks points 64-fold) and
-  // a margin; a damaged length field asks for far more (sim/core/allocation_budget.h).
+  // A damaged file can make OpenVDB abort or allocate without bound: where the process asked for it,
+  // a child reads the file first (sim/io/contained_read.h).
+  check_read_in_child(path, "vdb", grid_name);
   std::error_code size_error;
   const uint64_t file_bytes = std::filesystem::file_size(path, size_error);
-  AllocationBudget budget((size_t(256) << 20) + size_t(64 * (size_error ? 0 : file_bytes)));
-  const LibraryAbortGuard abort_guard(str(where, ": OpenVDB stopped on one of its own checks while reading this "
-                                          "file: it is damaged (or not written by OpenVDB)"));
   try {
     vdb::io::File file(where);
     file.open(/*delayLoad=*/false);
@@ -235,8 +232,8 @@ GridRead read_vdb(const std::filesystem::path& path, const std::string& grid_nam
   } catch (const Error&) {
     throw;
   } catch (const std::bad_alloc&) {
-    if (budget.exceeded())
-      fail(where, ": cannot read this OpenVDB file: reading it asked for more than ", budget.bytes() >> 20,
+    if (const uint64_t budget = read_budget_in_force())
+      fail(where, ": cannot read this OpenVDB file: reading it asked for more than ", budget >> 20,
             " MiB (256 MiB + 64 x its ", file_bytes, " bytes), which a sound file never needs: a length inside it is "
            "damaged");
     fail(where, ": ", out_of_memory_message(str("reading this OpenVDB file of ", byte_size_text(file_bytes))));

@@ -1,9 +1,8 @@
 // libFuzzer target: OpenVDB point caches (io/vdb_points.h) read directly and through the format dispatch
-// of `spume info`. The allocation budget and the abort message that bound such reads in the spume
-// command (sim/core/allocation_budget.h, sim/io/library_abort_guard.h) take effect through the command's
-// own hooks (render/app/process_hooks.cpp), which a fuzzer does not link: here an input that trips one
-// of the assertions Debian's OpenVDB keeps aborts, and libFuzzer reports it. spume handles such inputs
-// by design (tests/e2e/mantaflow_cache_test.cpp keeps one), so they are not kept in regressions/.
+// of `spume info`, in-process: the child process that reads such files first in the spume command
+// (sim/io/contained_read.h) is not asked for here, so an input that trips one of the assertions
+// Debian's OpenVDB keeps aborts, and libFuzzer reports it. spume handles such inputs by design
+// (tests/e2e/mantaflow_cache_test.cpp keeps two and 48 random ones), so they are not kept in regressions/.
 #include "tests/fuzz/fuzz_file.h"
 #include "sim/io/particle_file.h"
 #include "sim/io/vdb_points.h"

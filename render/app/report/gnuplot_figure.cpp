@@ -9,7 +9,7 @@
 
 #include "sim/core/atomic_file.h"
 #include "sim/core/error.h"
-#include "render/app/report/subprocess.h"
+#include "sim/core/child_process.h"
 
 namespace spume::report {
 namespace {

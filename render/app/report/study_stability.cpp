@@ -9,7 +9,7 @@
 #include "sim/core/error.h"
 #include "sim/core/params.h"
 #include "render/app/report/study.h"
-#include "render/app/report/subprocess.h"
+#include "sim/core/child_process.h"
 
 namespace spume::report {
 namespace {

@@ -3,15 +3,17 @@
 #include <string>
 #include <vector>
 
-namespace spume::report {
+namespace spume {
 
 struct ProcessResult {
   bool started = false;   // false: the program could not be run (not found, not executable)
   int exit_code = -1;     // -1 when killed by a signal
+  int signal = 0;         // the signal that ended it, or 0
   std::string output;     // stdout and stderr, interleaved
   std::string start_error;
 };
 
-ProcessResult run_process(const std::vector<std::string>& argv);
+// `environment`: "NAME=value" entries added to (or replacing) the ones this process has.
+ProcessResult run_process(const std::vector<std::string>& argv, const std::vector<std::string>& environment = {});
 
-}  // namespace spume::report
+}  // namespace spume
