@@ -28,8 +28,9 @@ int simulate(const cli::ParsedArgs& args) {
   if (!setup.quiet) {
     if (result.fluid.reused) std::fprintf(stderr, "fluid: caches are current, solver not run\n");
     if (result.diffuse.reused) std::fprintf(stderr, "diffuse: caches are current, nothing simulated\n");
-    if (setup.sim.write_vdb && result.vdb.written == 0)
-      std::fprintf(stderr, "diffuse_vdb: .vdb files are current, nothing written\n");
+    for (const auto& [folder, made] : result.exports)
+      if (made.kept > 0 && made.written == 0 && made.removed == 0)
+        std::fprintf(stderr, "%s: files are current, nothing written\n", folder.c_str());
   }
   return 0;
 }

@@ -18,10 +18,6 @@ std::string fluid_cache_pattern(const std::filesystem::path& scene_out) {
   return (scene_out / "fluid" / "fluid_%04d.spf").string();
 }
 
-std::filesystem::path fluid_bgeo_path(const std::filesystem::path& scene_out, int frame) {
-  return scene_out / "fluid_bgeo" / numbered_file_name("fluid", frame, ".bgeo");
-}
-
 std::filesystem::path fluid_restart_path(const std::filesystem::path& scene_out, int frame) {
   return scene_out / "fluid" / numbered_file_name("restart", frame, ".spr");
 }
@@ -38,14 +34,6 @@ std::filesystem::path diffuse_cache_path(const std::filesystem::path& scene_out,
 
 std::filesystem::path diffuse_restart_path(const std::filesystem::path& scene_out, int frame) {
   return scene_out / "diffuse" / numbered_file_name("restart", frame, ".spd");
-}
-
-std::filesystem::path diffuse_bgeo_path(const std::filesystem::path& scene_out, int frame) {
-  return scene_out / "diffuse_bgeo" / numbered_file_name("diffuse", frame, ".bgeo");
-}
-
-std::filesystem::path diffuse_vdb_path(const std::filesystem::path& scene_out, int frame) {
-  return scene_out / "diffuse_vdb" / numbered_file_name("diffuse", frame, ".vdb");
 }
 
 std::filesystem::path fluid_survey_path(const std::filesystem::path& scene_out) { return scene_out / "fluid_survey.json"; }

@@ -3,8 +3,8 @@
 // stages that write them and the renderer that reads them link this library.
 //   fluid/fluid_0000.spf      solver scenes: the fluid per frame        fluid/record.json
 //   fluid/restart_0000.spr    the solver's state at the last frame      fluid/bodies.csv
-//   fluid_bgeo/fluid_0000.bgeo, diffuse/diffuse_0000.spd, diffuse_bgeo/diffuse_0000.bgeo, diffuse/record.json
-//   diffuse_vdb/diffuse_0000.vdb and diffuse_vdb/record.json (output.vdb: stage/vdb_export.h)
+//   diffuse/diffuse_0000.spd, diffuse/record.json
+//   fluid_bgeo/, diffuse_bgeo/, diffuse_vdb/: the exports (output.*: stage/stage_exports.h)
 //   fluid_survey.json         every fluid frame's identity and bounds (io/fluid_survey.h)
 //   render_stats.csv          the render's milliseconds per stage, one row per frame drawn
 #include <filesystem>
@@ -17,15 +17,12 @@ std::string numbered_file_name(const std::string& prefix, int frame, const std::
 
 std::filesystem::path fluid_cache_path(const std::filesystem::path& scene_out, int frame);
 std::string fluid_cache_pattern(const std::filesystem::path& scene_out);  // for a FluidSource
-std::filesystem::path fluid_bgeo_path(const std::filesystem::path& scene_out, int frame);
 std::filesystem::path fluid_restart_path(const std::filesystem::path& scene_out, int frame);
 std::string fluid_restart_pattern(const std::filesystem::path& scene_out);
 std::filesystem::path body_track_path(const std::filesystem::path& scene_out);
 std::filesystem::path diffuse_cache_path(const std::filesystem::path& scene_out, int frame);
 // The diffuse state of a run's last frame, exact (the caches are quantized): a later run continues from it.
 std::filesystem::path diffuse_restart_path(const std::filesystem::path& scene_out, int frame);
-std::filesystem::path diffuse_bgeo_path(const std::filesystem::path& scene_out, int frame);
-std::filesystem::path diffuse_vdb_path(const std::filesystem::path& scene_out, int frame);  // diffuse_vdb/diffuse_0000.vdb
 std::filesystem::path fluid_survey_path(const std::filesystem::path& scene_out);
 std::filesystem::path render_stats_path(const std::filesystem::path& scene_out);
 

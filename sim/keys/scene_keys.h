@@ -226,13 +226,13 @@ inline constexpr KeySpec max{.path = "domain.max", .type = Vec3, .unit = "m", .l
 inline constexpr auto all = std::to_array<const KeySpec*>({&min, &max});
 }  // namespace domain
 
+// The exports: written from the caches after the stages, each with a record of its own
+// (stage/frame_export.h), so turning one on or off re-simulates nothing (no stage's keys hold them).
 namespace output {
 inline constexpr KeySpec bgeo{.path = "output.bgeo", .type = Boolean, .value = {0},
                               .doc = "also write the diffuse frames as BGEO (Houdini, Blender)"};
 inline constexpr KeySpec fluid_bgeo{.path = "output.fluid_bgeo", .type = Boolean, .value = {0},
                                     .doc = "solver scenes: also write the fluid frames as BGEO"};
-// Written from the diffuse caches after the diffuse stage, with a record of its own: turning it on or
-// off re-simulates nothing (so it is left out of the diffuse stage's keys, sim_scene.cpp).
 inline constexpr KeySpec vdb{.path = "output.vdb", .type = Boolean, .value = {0},
                              .doc = "also write the diffuse frames as OpenVDB points (Houdini; positions within "
                                     "2 r / 131070, velocities as half floats)"};

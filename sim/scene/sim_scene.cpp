@@ -166,12 +166,11 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
     if (!scene.read.stored_masses) keys["fluid_import"]["masses"] = "implied";
     if (scene.fluid.fps != fluid.number(k::fluid::fps)) keys["fluid_import"]["fps"] = scene.fluid.fps;
   }
-  keys["output"] = {{"fluid_bgeo", scene.write_fluid_bgeo}};  // what the fluid stage writes
+  // No output.* key: the exports are made from the caches, with records of their own
+  // (stage/frame_export.h), so turning one on or off re-simulates nothing.
   scene.fluid_keys = with_generation(keys);
   keys["diffuse"] = root.effective("diffuse");
   keys["domain"] = root.effective("domain");
-  keys["output"] = root.effective("output");
-  if (keys["output"].is_object()) keys["output"].erase("vdb");  // made from the diffuse caches, with its own record (stage/vdb_export.h)
   scene.diffuse_keys = with_generation(keys);
   return scene;
 }

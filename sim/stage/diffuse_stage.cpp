@@ -172,7 +172,6 @@ DiffuseStageSummary run_diffuse_stage(const SimScene& scene, const SceneInputs& 
         write_cache(diffuse_restart_path(summary.out_dir, particles.index), 0.0);
         writer.wait();  // the last frame's files are on disk before its row is written
       }
-      if (scene.write_bgeo) write_bgeo(diffuse_bgeo_path(summary.out_dir, particles.index), particles);
       io_ms = t0.milliseconds();
       notes.written(stats, particles.index);
     };

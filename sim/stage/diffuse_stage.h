@@ -1,7 +1,7 @@
 #pragma once
 // The simulation stage of a run: fluid frames in, diffuse caches and statistics out, on disk.
 //   OUT/<scene>/diffuse/diffuse_0000.spd   one cache per frame (io/spume_cache.h documents the format)
-//   OUT/<scene>/diffuse_bgeo/...           the same as BGEO, when asked for
+//   (output.bgeo, output.vdb: made from these caches afterwards, stage/stage_exports.h)
 //   OUT/<scene>/stats.csv                  counts and milliseconds per stage, one row per frame
 //   OUT/<scene>/diffuse_params.json        every diffuse parameter as used (defaults resolved)
 #include <filesystem>

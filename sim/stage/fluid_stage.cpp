@@ -157,7 +157,6 @@ FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions
     const FluidFrame frame = solver.frame(f);
     write_fluid_cache(fluid_cache_path(out, f), frame, scene.fluid.particle_radius);
     if (has_bodies) bodies.frames.push_back(solver.body_poses());
-    if (scene.write_fluid_bgeo) write_bgeo(fluid_bgeo_path(out, f), frame);
     const SolverStats now = solver.stats();
     const double speed = fastest_speed(frame);
     if (speed > fastest) fastest = speed, fastest_frame = f;

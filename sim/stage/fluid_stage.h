@@ -5,7 +5,7 @@
 //   OUT/<scene>/fluid/solver_stats.csv     steps, time step, density error, iterations, fastest particle
 //                                          per frame (kSolverStatsHeader)
 //   OUT/<scene>/fluid/bodies.csv           the dynamic solids' poses per frame (body_track_file.h)
-//   OUT/<scene>/fluid_bgeo/fluid_0000.bgeo the same as BGEO, when output.fluid_bgeo is set
+//   (output.fluid_bgeo: made from these caches afterwards, stage/stage_exports.h)
 //   OUT/<scene>/fluid/restart_0000.spr     the solver's state after the last frame (fluid_continuation.h)
 // Current caches (cache_state.h) are reused and the solver does not run; a folder holding more frames
 // than asked for serves a shorter range; one holding a current prefix of the frames is continued

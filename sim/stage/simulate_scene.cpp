@@ -1,5 +1,7 @@
 #include "sim/stage/simulate_scene.h"
 
+#include "sim/io/cache_layout.h"
+
 namespace spume {
 
 std::unique_ptr<FluidSource> scene_fluid_source(const SimScene& scene, const std::filesystem::path& out_root) {
@@ -41,19 +43,38 @@ bool scene_simulation_is_current(const SimScene& scene, const DiffuseStageOption
   const auto source = scene_fluid_source(scene, options.out_root);
   const SceneInputs inputs = read_scene_inputs(scene, options.out_root, true);
   if (!diffuse_caches_current(scene, inputs, *source, options)) return false;
-  return diffuse_vdb_current(scene, diffuse_frames_to_run(scene, *source, options), options.out_root / scene.name);
+  const std::filesystem::path scene_out = options.out_root / scene.name;
+  if (scene.source == FluidSourceKind::Solver) {
+    const std::vector<int> frames = recorded_frames(fluid_cache_path(scene_out, 0).parent_path(), {});
+    for (const FrameExport& e : fluid_exports(scene, scene_out))
+      if (!export_current(e, frames, scene_out)) return false;
+  }
+  const std::vector<int> frames = recorded_frames(diffuse_cache_path(scene_out, 0).parent_path(),
+                                                  diffuse_frames_to_run(scene, *source, options));
+  for (const FrameExport& e : diffuse_exports(scene, scene_out))
+    if (!export_current(e, frames, scene_out)) return false;
+  return true;
 }
 
 SceneSimulation simulate_scene(const SimScene& scene, const DiffuseStageOptions& options, bool diffuse) {
   SceneSimulation result;
-  if (scene.source == FluidSourceKind::Solver) result.fluid = run_fluid_stage(scene, fluid_options(scene, options));
+  const std::filesystem::path scene_out = options.out_root / scene.name;
+  if (scene.source == FluidSourceKind::Solver) {
+    result.fluid = run_fluid_stage(scene, fluid_options(scene, options));
+    const std::vector<int> frames = recorded_frames(fluid_cache_path(scene_out, 0).parent_path(), {});
+    for (const FrameExport& e : fluid_exports(scene, scene_out))
+      result.exports.emplace_back(e.folder, bring_export_in_line(e, frames, scene_out, options.quiet));
+  }
   if (diffuse) {
     auto source = scene_fluid_source(scene, options.out_root);
     const SceneInputs inputs = read_scene_inputs(scene, options.out_root, options.quiet);
     // New fluid frames have new file identities, which the diffuse record compares (io/stage_record.h).
     result.diffuse = run_diffuse_stage(scene, inputs, *source, options);
-    result.vdb = export_diffuse_vdb(scene, diffuse_frames_to_run(scene, *source, options),
-                                    options.out_root / scene.name, options.quiet);
+    // The frames the caches hold by their record: a reused run over a part of them keeps the rest.
+    const std::vector<int> frames = recorded_frames(diffuse_cache_path(scene_out, 0).parent_path(),
+                                                    diffuse_frames_to_run(scene, *source, options));
+    for (const FrameExport& e : diffuse_exports(scene, scene_out))
+      result.exports.emplace_back(e.folder, bring_export_in_line(e, frames, scene_out, options.quiet));
   }
   return result;
 }

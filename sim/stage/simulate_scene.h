@@ -2,19 +2,20 @@
 // Both simulation stages of a scene, each skipped when its caches are current:
 //   fluid   (solver scenes only) -> OUT/<scene>/fluid/      fluid_stage.h
 //   diffuse                      -> OUT/<scene>/diffuse/    diffuse_stage.h
-//   then, from the diffuse caches, OpenVDB points (output.vdb) -> OUT/<scene>/diffuse_vdb/  vdb_export.h
+//   then the exports of each stage's caches (output.*: BGEO, OpenVDB points)    stage_exports.h
 #include <memory>
 
 #include "sim/stage/fluid_stage.h"
 #include "sim/stage/diffuse_stage.h"
-#include "sim/stage/vdb_export.h"
+#include "sim/stage/stage_exports.h"
 
 namespace spume {
 
 struct SceneSimulation {
   FluidStageSummary fluid;     // frames == 0 when the fluid comes from files
   DiffuseStageSummary diffuse;     // frames == 0 when the diffuse stage was not asked for
-  VdbExportSummary vdb;        // output.vdb, after the diffuse stage (vdb_export.h)
+  // The exports brought in line after the stages ran, by folder ("diffuse_vdb"): stage_exports.h.
+  std::vector<std::pair<std::string, FrameExportSummary>> exports;
 };
 
 // Where the scene's fluid frames are read from: its files, or the solver's caches under out_root.

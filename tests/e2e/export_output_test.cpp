@@ -1,7 +1,7 @@
-// output.vdb (`spume simulate --vdb`) through the binary: one .vdb per diffuse frame holding that
-// frame's particles, nothing rewritten on a rerun, rewritten when the caches change, removed when the
-// option goes off (without re-simulating), none when never asked for, and the same bytes for 1 and 2
-// threads.
+// The exports (`spume simulate --vdb`, `--bgeo`) through the binary: one file per diffuse frame holding
+// that frame's particles, nothing rewritten on a rerun, rewritten when the caches change, removed when
+// the option goes off (without re-simulating), none when never asked for, the same bytes for 1 and 2
+// threads; and never an earlier run's files beside the current run's (stage/frame_export.h).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -18,6 +18,7 @@
 #include "tests/support/files.h"
 #include "tests/support/run_spume.h"
 #include "tests/support/temp_dir.h"
+#include "tests/support/text.h"
 #include "tests/support/test_fluids.h"
 #include "tests/support/written_files.h"
 
@@ -46,7 +47,7 @@ std::multiset<uint64_t> vdb_ids(const fs::path& path) {
 }
 
 // Eight BGEO frames of two blocks of water thrown at each other in a tank (as in provenance_test).
-class VdbOutput : public ::testing::Test {
+class Exports : public ::testing::Test {
  protected:
   void SetUp() override {
     fs::create_directories(dir / "cache");
@@ -93,7 +94,7 @@ class VdbOutput : public ::testing::Test {
   const fs::path& dir = temp.path;
 };
 
-TEST_F(VdbOutput, OneVdbPerFrameNotRewrittenOnARerunRemovedWhenOff) {
+TEST_F(Exports, OneVdbPerFrameNotRewrittenOnARerunRemovedWhenOff) {
   CommandResult r = run_spume("simulate " + args("--vdb"));
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_EQ(vdb_files(), 8u);
@@ -121,7 +122,7 @@ TEST_F(VdbOutput, OneVdbPerFrameNotRewrittenOnARerunRemovedWhenOff) {
   EXPECT_EQ(testing::written_since_mark(out("diffuse")), std::vector<std::string>{});
 }
 
-TEST_F(VdbOutput, NoneUnlessAskedAndTurningItOnSimulatesNothing) {
+TEST_F(Exports, NoneUnlessAskedAndTurningItOnSimulatesNothing) {
   CommandResult r = run_spume("simulate " + args());
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_FALSE(fs::exists(out("diffuse_vdb")));
@@ -133,29 +134,67 @@ TEST_F(VdbOutput, NoneUnlessAskedAndTurningItOnSimulatesNothing) {
   expect_vdb_matches_caches();
 }
 
-TEST_F(VdbOutput, AShorterRangeKeepsTheOthersOnlyWhileTheirCachesAreUnchanged) {
-  ASSERT_EQ(run_spume("simulate " + args("--vdb")).status, 0);
+// The case: frames 1-8 exported, then frames 1-4 with other keys. The caches of 5-8 are the
+// earlier run's, so their .vdb and .bgeo go, and the log says so; 1-4 hold the new caches' particles.
+TEST_F(Exports, AnotherRunOverAShorterRangeLeavesOnlyItsOwnFrames) {
+  ASSERT_EQ(run_spume("simulate " + args("--vdb --bgeo")).status, 0);
+  // The same keys over frames 1-4: the caches of 1-8 are current and reused, and so are the exports.
   testing::mark_files(out("diffuse_vdb"));
-  CommandResult r = run_spume("simulate " + args("--vdb --frames 1-5"));
+  CommandResult r = run_spume("simulate " + args("--vdb --bgeo --frames 1-4"));
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_EQ(vdb_files(), 8u);
   EXPECT_EQ(testing::written_since_mark(out("diffuse_vdb")), std::vector<std::string>{});
-  // New keys over frames 1-5: their caches change, and frames 6-8 (made from the old caches, which
-  // no longer continue these) are noticed once their .spd changes too.
-  r = run_spume("simulate " + args("--vdb --frames 1-5 --set diffuse.seed=3"));
+  // Other keys over frames 1-4.
+  r = run_spume("simulate " + args("--vdb --bgeo --frames 1-4 --set diffuse.seed=3").replace(args().find("--quiet"), 7, ""));
   ASSERT_EQ(r.status, 0) << r.output;
-  for (int k = 1; k <= 5; ++k) {
+  EXPECT_TRUE(testing::contains(r.output, "diffuse_vdb: removed 4 .vdb files of frames 5-8 (frames of an earlier run: "
+                                          "this run's caches are frames 1-4)")) << r.output;
+  EXPECT_TRUE(testing::contains(r.output, "diffuse_bgeo: removed 4 .bgeo files of frames 5-8")) << r.output;
+  EXPECT_EQ(vdb_files(), 4u);
+  for (int k = 1; k <= 8; ++k) {
+    EXPECT_EQ(fs::exists(out("diffuse_bgeo/" + numbered(k, ".bgeo"))), k <= 4) << k;
+    if (k > 4) continue;
     const DiffuseFrame spd = read_diffuse_cache(out("diffuse/" + numbered(k, ".spd")));
-    EXPECT_EQ(vdb_ids(out("diffuse_vdb/" + numbered(k, ".vdb"))), std::multiset<uint64_t>(spd.ids.begin(), spd.ids.end()));
+    const std::multiset<uint64_t> expected(spd.ids.begin(), spd.ids.end());
+    EXPECT_EQ(vdb_ids(out("diffuse_vdb/" + numbered(k, ".vdb"))), expected) << k;
+    const DiffuseFrame bgeo = read_bgeo_diffuse(out("diffuse_bgeo/" + numbered(k, ".bgeo")));
+    EXPECT_EQ(std::multiset<uint64_t>(bgeo.ids.begin(), bgeo.ids.end()), expected) << k;
   }
-  std::filesystem::remove(out("diffuse/" + numbered(7, ".spd")));
-  r = run_spume("simulate " + args("--vdb --frames 1-5 --set diffuse.seed=3"));
-  ASSERT_EQ(r.status, 0) << r.output;
-  EXPECT_FALSE(fs::exists(out("diffuse_vdb/" + numbered(7, ".vdb"))));
-  EXPECT_TRUE(fs::exists(out("diffuse_vdb/" + numbered(6, ".vdb"))));
 }
 
-TEST_F(VdbOutput, AFarmRunsTheSimulationJobWhileTheVdbFilesAreMissing) {
+// The other case: BGEO on 8 frames, then a rerun with other keys and no --bgeo. The .bgeo
+// files of the earlier run go (the log says why), and asking for them again writes them from the
+// caches without simulating again.
+TEST_F(Exports, BgeoFilesGoWhenARunDoesNotAskForThemAndComeBackWithoutSimulating) {
+  ASSERT_EQ(run_spume("simulate " + args("--bgeo")).status, 0);
+  for (int k = 1; k <= 8; ++k) EXPECT_TRUE(fs::exists(out("diffuse_bgeo/" + numbered(k, ".bgeo")))) << k;
+  CommandResult r = run_spume("simulate " + args("--set diffuse.seed=5").replace(args().find("--quiet"), 7, ""));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(testing::contains(r.output, "diffuse_bgeo: removed 8 .bgeo files of frames 1-8 (output.bgeo is off)"))
+      << r.output;
+  EXPECT_FALSE(fs::exists(out("diffuse_bgeo")));
+  testing::mark_files(out("diffuse"));
+  r = run_spume("simulate " + args("--bgeo --set diffuse.seed=5"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(testing::written_since_mark(out("diffuse")), std::vector<std::string>{}) << "the diffuse stage ran again";
+  for (int k = 1; k <= 8; ++k) {
+    const DiffuseFrame spd = read_diffuse_cache(out("diffuse/" + numbered(k, ".spd")));
+    const DiffuseFrame bgeo = read_bgeo_diffuse(out("diffuse_bgeo/" + numbered(k, ".bgeo")));
+    EXPECT_EQ(std::multiset<uint64_t>(bgeo.ids.begin(), bgeo.ids.end()),
+              std::multiset<uint64_t>(spd.ids.begin(), spd.ids.end())) << k;
+  }
+}
+
+// Exports are no part of what the render depends on: `simulate --bgeo --vdb`, then `render` of the scene
+// as written (no export keys) renders the caches instead of refusing them as made with other keys.
+TEST_F(Exports, RenderAfterAnExportUsesTheCaches) {
+  ASSERT_EQ(run_spume("simulate " + args("--bgeo --vdb")).status, 0);
+  const CommandResult r = run_spume("render " + args("--set 'render.resolution=[64,36]' --frames 8"));
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_FALSE(testing::contains(r.output, "output.")) << r.output;
+}
+
+TEST_F(Exports, AFarmRunsTheSimulationJobWhileTheVdbFilesAreMissing) {
   ASSERT_EQ(run_spume("simulate " + args()).status, 0);
   const std::string farm = "farm slurm " + (dir / "scene.json").string() + " --out " + (dir / "out").string() +
                            " --chunk 4 --set output.vdb=true";
@@ -168,7 +207,7 @@ TEST_F(VdbOutput, AFarmRunsTheSimulationJobWhileTheVdbFilesAreMissing) {
   EXPECT_NE(r.output.find("no simulation job"), std::string::npos) << r.output;
 }
 
-TEST_F(VdbOutput, SameBytesForOneAndTwoThreads) {
+TEST_F(Exports, SameBytesForOneAndTwoThreads) {
   ASSERT_EQ(run_spume("simulate " + args("--vdb --threads 1", "one")).status, 0);
   ASSERT_EQ(run_spume("simulate " + args("--vdb --threads 2", "two")).status, 0);
   for (int k = 1; k <= 8; ++k) {
