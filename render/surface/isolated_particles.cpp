@@ -30,7 +30,8 @@ std::vector<uint32_t> connected_particles(std::span<const Vec3f> points, float s
       int nr = 1;
       bool looked_up = false;
       ranges[0] = bins.points(c);
-      const auto [x, y, z] = SparseBins::unpack(bins.key(c));
+      const std::array<int, 3> xyz = SparseBins::unpack(bins.key(c));
+      const int x = xyz[0], y = xyz[1], z = xyz[2];
       auto look_up = [&] {
         for (int dz = -1; dz <= 1; ++dz)
           for (int dy = -1; dy <= 1; ++dy)

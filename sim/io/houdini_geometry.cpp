@@ -255,7 +255,7 @@ FluidFrame read_houdini_geometry(const std::filesystem::path& path, HoudiniGeome
     const std::vector<double>& values = p->values;
     frame.positions.reserve(n - info.points_without_id);
     for (size_t i = 0; i < n; ++i) {
-      const Vec3f x(float(values[3 * i]), float(values[3 * i + 1]), float(values[3 * i + 2]));
+      const Vec3f x{float(values[3 * i]), float(values[3 * i + 1]), float(values[3 * i + 2])};
       info.point_bounds.extend(x);
       if (keep[i]) frame.positions.push_back(x);
     }
@@ -264,7 +264,7 @@ FluidFrame read_houdini_geometry(const std::filesystem::path& path, HoudiniGeome
     const std::vector<double>& values = v->values;
     frame.velocities.reserve(frame.positions.size());
     for (size_t i = 0; i < n; ++i) {
-      const Vec3f u(float(values[3 * i]), float(values[3 * i + 1]), float(values[3 * i + 2]));
+      const Vec3f u{float(values[3 * i]), float(values[3 * i + 1]), float(values[3 * i + 2])};
       info.velocity_range.extend(u);
       if (keep[i]) frame.velocities.push_back(u);
     }

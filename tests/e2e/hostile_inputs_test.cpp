@@ -49,6 +49,7 @@ const SpumeOptions kSmallAddressSpace = SpumeOptions::after("ulimit -v 1000000")
 // links cannot start the threads they start while loading (log4cplus, through OpenVDB, aborted there);
 // at 500 MB Mesa crashed creating the context --version asks for its version. With 1 GiB both answer.
 TEST(HostileInputs, SmallAddressSpacesGiveAnAnswerOrAMessageNeverAnAbort) {
+  SPUME_SKIP_UNDER_ADDRESS_SANITIZER();
   const testing::TempDir dir;
   FluidFrame two;
   two.positions = {Vec3f(0, 0, 0), Vec3f(0.04f, 0, 0)};
@@ -219,6 +220,7 @@ TEST(HostileInputs, ABgeoScChunkClaimingMoreThanItsCodecCanHoldIsRefusedFromItsH
 // in an address space of 977 MiB. The message names the file, what was allocated and how much, and the
 // limit; simulate says the same for the frame.
 TEST(HostileInputs, OutOfMemoryNamesTheFileTheSizeAndTheLimit) {
+  SPUME_SKIP_UNDER_ADDRESS_SANITIZER();
   const testing::TempDir dir;
   const uint64_t points = 100'000'000;
   const std::string head = str("ply\nformat binary_little_endian 1.0\nelement vertex ", points,

@@ -85,6 +85,10 @@ TEST(MantaflowCache, ADamagedLengthInsideAVdbIsRefusedWithBoundedMemory) {
   testing::write_file(damaged, bytes);
   const CommandResult r = run_spume("info " + damaged.string(), testing::SpumeOptions::after("ulimit -v 1572864"));
   EXPECT_EQ(r.status, 1) << r.output;
+  if (kAddressSanitizer) {  // no address-space limit there: the sanitizer's cap on one allocation ends the child
+    EXPECT_TRUE(contains(r.output, "damaged.vdb: reading this file stopped spume's reader process")) << r.output;
+    return;
+  }
   EXPECT_TRUE(contains(r.output, "damaged.vdb: cannot read this OpenVDB file: reading it asked for more than")) << r.output;
   EXPECT_TRUE(contains(r.output, "a length inside it is damaged")) << r.output;
 }

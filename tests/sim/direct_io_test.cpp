@@ -101,9 +101,13 @@ TEST(DirectIo, ReadBytesArriveWholeWhateverTheirAlignmentAndSize) {
   const std::string missing = testing::error_of([&] { read_file_bytes(temp.path / "none.spd", into.data, 10); });
   EXPECT_NE(missing.find("none.spd"), std::string::npos) << missing;
   // A file shorter than asked (changed since its size was taken), in the direct part and in the tail.
-  for (const auto& [name, asked] : {std::pair{"in_100.bin", size_t(4096 + 50)}, std::pair{"in_12288.bin", size_t(3 * 4096 + 123)}}) {
-    const std::string shorter = testing::error_of([&] { read_file_bytes(temp.path / name, into.data, asked); });
-    EXPECT_NE(shorter.find(name), std::string::npos) << shorter;
+  struct Shorter {
+    std::string name;
+    size_t asked;
+  };
+  for (const Shorter& file : {Shorter{"in_100.bin", 4096 + 50}, Shorter{"in_12288.bin", 3 * 4096 + 123}}) {
+    const std::string shorter = testing::error_of([&] { read_file_bytes(temp.path / file.name, into.data, file.asked); });
+    EXPECT_NE(shorter.find(file.name), std::string::npos) << shorter;
     EXPECT_NE(shorter.find("file changed"), std::string::npos) << shorter;
   }
 }
