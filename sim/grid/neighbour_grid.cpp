@@ -78,19 +78,15 @@ uint32_t NeighbourGrid::key_of(const Vec3f& p) const {
 
 // A batch without branches, built for AVX2 and baseline x86-64 and picked at load time: per point it
 // is key_of's expression (so the same cell), 8 points at a time. One call per point took 4% of a
-// 15M-particle diffuse frame's CPU time.
-__attribute__((target_clones("avx2", "default"))) void NeighbourGrid::octant_keys(std::span<const Vec3f> points,
-                                                                                  std::span<uint32_t> keys) const {
-  if (sorted_points_.empty()) {
-    std::fill(keys.begin(), keys.end(), kOutside);
-    return;
-  }
-  const float* xyz = points.empty() ? nullptr : points[0].data();
-  const float cell = cell_;
-  const float ox = origin_[0], oy = origin_[1], oz = origin_[2];
-  const float nx = float(dims_[0]), ny = float(dims_[1]), nz = float(dims_[2]);
-  const uint32_t row = uint32_t(dims_[0]), layer = uint32_t(dims_[0]) * uint32_t(dims_[1]);
-  for (size_t i = 0; i < points.size(); ++i) {
+// 15M-particle diffuse frame's CPU time. A free function: clang 14 emits no load-time choice for a
+// member function with target_clones defined out of its class.
+__attribute__((target_clones("avx2", "default"))) void octant_keys_of(const float* xyz, size_t n, float cell,
+                                                                      const float origin[3], const int dims[3],
+                                                                      uint32_t* keys) {
+  const float ox = origin[0], oy = origin[1], oz = origin[2];
+  const float nx = float(dims[0]), ny = float(dims[1]), nz = float(dims[2]);
+  const uint32_t row = uint32_t(dims[0]), layer = uint32_t(dims[0]) * uint32_t(dims[1]);
+  for (size_t i = 0; i < n; ++i) {
     const float ux = (xyz[3 * i] - ox) / cell, uy = (xyz[3 * i + 1] - oy) / cell, uz = (xyz[3 * i + 2] - oz) / cell;
     const float fx = std::floor(ux), fy = std::floor(uy), fz = std::floor(uz);
     // !(f >= 0) also catches NaN; an outside point's cell is taken as 0 so the conversion stays defined.
@@ -99,8 +95,18 @@ __attribute__((target_clones("avx2", "default"))) void NeighbourGrid::octant_key
                    cz = uint32_t(int(inside ? fz : 0.0f));
     const uint32_t octant = (ux - fx >= 0.5f ? 1u : 0u) | (uy - fy >= 0.5f ? 2u : 0u) | (uz - fz >= 0.5f ? 4u : 0u);
     const uint32_t key = (cz * layer + cy * row + cx) * 8 + octant;
-    keys[i] = inside ? key : kOutside;
+    keys[i] = inside ? key : NeighbourGrid::kOutside;
   }
+}
+
+void NeighbourGrid::octant_keys(std::span<const Vec3f> points, std::span<uint32_t> keys) const {
+  if (sorted_points_.empty()) {
+    std::fill(keys.begin(), keys.end(), kOutside);
+    return;
+  }
+  const float origin[3] = {origin_[0], origin_[1], origin_[2]};
+  const int dims[3] = {int(dims_[0]), int(dims_[1]), int(dims_[2])};
+  octant_keys_of(points.empty() ? nullptr : points[0].data(), points.size(), cell_, origin, dims, keys.data());
 }
 
 template <int reach>
