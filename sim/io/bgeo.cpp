@@ -357,13 +357,15 @@ void write_bgeo(const std::filesystem::path& path, const FluidFrame& frame) {
   w.finish_and_write(path);
 }
 
-void write_bgeo(const std::filesystem::path& path, const DiffuseFrame& frame) {
+void write_bgeo(const std::filesystem::path& path, const DiffuseFrame& frame, std::span<const float> ages) {
   frame.validate(path.string());
   const size_t n = frame.size();
   check_point_count(path, n);
-  const std::vector<Attr> attrs = {
+  if (!ages.empty() && ages.size() != n) fail(path.string(), ": ", ages.size(), " ages for ", n, " particles");
+  std::vector<Attr> attrs = {
       {"v", kVector, 3, 0}, {"type", kInt, 1, 0}, {"lifetime", kFloat, 1, 0},
       {"id", kInt, 1, 0},   {"birth", kInt, 1, 0}, {"sample", kInt, 1, 0}};
+  if (!ages.empty()) attrs.insert(attrs.end(), {{"age", kFloat, 1, 0}, {"life", kFloat, 1, 0}});
   Writer w;
   w.out.reserve(256 + n * 11 * 4);
   w.header(n, attrs);
@@ -378,6 +380,10 @@ void write_bgeo(const std::filesystem::path& path, const DiffuseFrame& frame) {
     w.i32(int32_t(diffuse_id_parent(frame.ids[i])));
     w.i32(int32_t(diffuse_id_step(frame.ids[i])));
     w.i32(int32_t(diffuse_id_sample(frame.ids[i])));
+    if (!ages.empty()) {
+      w.f32(ages[i]);
+      w.f32(ages[i] + frame.lifetimes[i]);
+    }
   }
   w.finish_and_write(path);
 }

@@ -13,6 +13,7 @@
 // Houdini's JSON geometry (binary 7F 'N' 'S' 'J', or ASCII '{'/'[') is detected and refused here: the binary
 // form is io/houdini_geometry.h's, which io/particle_file.h picks by the first bytes.
 #include <filesystem>
+#include <span>
 #include <vector>
 
 #include "sim/core/frames.h"
@@ -51,7 +52,9 @@ DiffuseFrame read_bgeo_diffuse(const std::filesystem::path& path);
 void write_bgeo(const std::filesystem::path& path, const FluidFrame& frame);
 
 // Gzip-compressed BGEO with point attributes `v` (vector), `type` (int: 0 spray, 1 foam, 2 bubble),
-// `lifetime` (float), `id` (int, parent fluid id), `birth` (int, birth step), `sample` (int).
-void write_bgeo(const std::filesystem::path& path, const DiffuseFrame& frame);
+// `lifetime` (float, s remaining), `id` (int, parent fluid id), `birth` (int, birth step), `sample`
+// (int); with `ages` (s, one per particle: io/diffuse_age.h) also Houdini's `age` and `life` (float, s:
+// age + lifetime, so age / life runs from 0 towards 1).
+void write_bgeo(const std::filesystem::path& path, const DiffuseFrame& frame, std::span<const float> ages = {});
 
 }  // namespace spume

@@ -104,7 +104,8 @@ double vdb_velocity_error(float component) {
   return std::max(std::ldexp(std::fabs(double(component)), -11), std::ldexp(1.0, -25));
 }
 
-std::string vdb_points_bytes(const DiffuseFrame& frame, float voxel_size) {
+std::string vdb_points_bytes(const DiffuseFrame& frame, float voxel_size, std::span<const float> ages) {
+  if (!ages.empty() && ages.size() != frame.size()) fail("OpenVDB points: ", ages.size(), " ages for ", frame.size(), " particles");
   if (!(voxel_size > 0.0f) || !std::isfinite(voxel_size)) fail("OpenVDB points: voxel size ", voxel_size, " is not positive");
   initialize_openvdb();
   const size_t n = frame.size();
@@ -134,6 +135,14 @@ std::string vdb_points_bytes(const DiffuseFrame& frame, float voxel_size) {
     add_attribute(tree, index->tree(), "v", velocities);
     vp::appendAttribute<float>(tree, "lifetime");
     add_attribute(tree, index->tree(), "lifetime", frame.lifetimes);
+    if (!ages.empty()) {  // Houdini's names: age since birth, life the whole span (alive while age < life)
+      std::vector<float> age(ages.begin(), ages.end()), life(n);
+      for (size_t i = 0; i < n; ++i) life[i] = age[i] + frame.lifetimes[i];
+      vp::appendAttribute<float>(tree, "age");
+      add_attribute(tree, index->tree(), "age", age);
+      vp::appendAttribute<float>(tree, "life");
+      add_attribute(tree, index->tree(), "life", life);
+    }
     vp::appendAttribute<int64_t>(tree, "id");
     add_attribute(tree, index->tree(), "id", ids);
     vp::appendAttribute<int32_t>(tree, "type");
@@ -161,8 +170,9 @@ std::string vdb_points_bytes(const DiffuseFrame& frame, float voxel_size) {
   return bytes;
 }
 
-void write_vdb_points(const std::filesystem::path& path, const DiffuseFrame& frame, float voxel_size) {
-  const std::string bytes = with_context(path.string(), [&] { return vdb_points_bytes(frame, voxel_size); });
+void write_vdb_points(const std::filesystem::path& path, const DiffuseFrame& frame, float voxel_size,
+                      std::span<const float> ages) {
+  const std::string bytes = with_context(path.string(), [&] { return vdb_points_bytes(frame, voxel_size, ages); });
   write_file_atomically(path, [&](std::ostream& out) { out.write(bytes.data(), std::streamsize(bytes.size())); });
 }
 

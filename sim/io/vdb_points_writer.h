@@ -12,6 +12,7 @@
 // UUID, which is replaced by one derived from the rest of the file (same content, same UUID).
 // OpenVDB's headers stay in the .cpp: they are heavy.
 #include <filesystem>
+#include <span>
 #include <string>
 
 #include "sim/core/frames.h"
@@ -31,10 +32,12 @@ double vdb_velocity_error(float component);
 // What fixes the bytes besides the frame, for records: "spume-vdb-points 1, OpenVDB 10.0.1, voxel V".
 std::string vdb_points_format(float voxel_size);
 
-// The whole .vdb file as bytes (deterministic: the same for any thread count).
-std::string vdb_points_bytes(const DiffuseFrame& frame, float voxel_size);
+// The whole .vdb file as bytes (deterministic: the same for any thread count). With `ages` (one per
+// particle, s: io/diffuse_age.h), also `age` and `life` = age + the remaining lifetime, Houdini's names.
+std::string vdb_points_bytes(const DiffuseFrame& frame, float voxel_size, std::span<const float> ages = {});
 // Written atomically (core/atomic_file.h). Throws Error naming the path on failure; a component
 // beyond half's range (65504 m/s) is an error rather than an infinity.
-void write_vdb_points(const std::filesystem::path& path, const DiffuseFrame& frame, float voxel_size);
+void write_vdb_points(const std::filesystem::path& path, const DiffuseFrame& frame, float voxel_size,
+                      std::span<const float> ages = {});
 
 }  // namespace spume

@@ -4,8 +4,10 @@
 // threads; and never an earlier run's files beside the current run's (stage/frame_export.h).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 
 #include <openvdb/openvdb.h>
@@ -44,6 +46,27 @@ std::multiset<uint64_t> vdb_ids(const fs::path& path) {
     for (auto index = leaf->beginIndexOn(); index; ++index) ids.insert(uint64_t(id.get(*index)));
   }
   return ids;
+}
+
+// Each point's age, life and lifetime by id, read with OpenVDB's own API.
+struct Ages {
+  float age, life, lifetime;
+};
+std::map<uint64_t, Ages> vdb_ages(const fs::path& path) {
+  openvdb::initialize();
+  openvdb::io::File file(path.string());
+  file.open();
+  const auto grid = openvdb::gridPtrCast<openvdb::points::PointDataGrid>(file.readGrid("points"));
+  std::map<uint64_t, Ages> ages;
+  if (!grid) return ages;
+  for (auto leaf = grid->tree().cbeginLeaf(); leaf; ++leaf) {
+    openvdb::points::AttributeHandle<int64_t> id(leaf->constAttributeArray("id"));
+    openvdb::points::AttributeHandle<float> age(leaf->constAttributeArray("age")), life(leaf->constAttributeArray("life")),
+        lifetime(leaf->constAttributeArray("lifetime"));
+    for (auto index = leaf->beginIndexOn(); index; ++index)
+      ages[uint64_t(id.get(*index))] = {age.get(*index), life.get(*index), lifetime.get(*index)};
+  }
+  return ages;
 }
 
 // Eight BGEO frames of two blocks of water thrown at each other in a tank (as in provenance_test).
@@ -192,6 +215,40 @@ TEST_F(Exports, RenderAfterAnExportUsesTheCaches) {
   const CommandResult r = run_spume("render " + args("--set 'render.resolution=[64,36]' --frames 8"));
   EXPECT_EQ(r.status, 0) << r.output;
   EXPECT_FALSE(testing::contains(r.output, "output.")) << r.output;
+}
+
+// Houdini's age and life on every exported particle (at 25 fps and 2 substeps): the same particle is
+// 1/25 s older each frame; one new since the previous frame was emitted at the start of one of the two
+// steps since (0.04 or 0.02 s ago); life - age is the remaining lifetime. The BGEO files carry the
+// same two float attributes.
+TEST_F(Exports, AgeGrowsByOneFrameIntervalAndLifeMinusAgeIsTheRemainingLifetime) {
+  ASSERT_EQ(run_spume("simulate " + args("--vdb --bgeo --set fluid.fps=25 --set diffuse.substeps=2")).status, 0);
+  size_t followed = 0, born = 0;
+  std::map<uint64_t, Ages> before = vdb_ages(out("diffuse_vdb/" + numbered(1, ".vdb")));
+  for (int k = 2; k <= 8; ++k) {
+    const std::map<uint64_t, Ages> now = vdb_ages(out("diffuse_vdb/" + numbered(k, ".vdb")));
+    for (const auto& [id, a] : now) {
+      EXPECT_NEAR(a.life - a.age, a.lifetime, 1e-5f * a.life) << "frame " << k << " id " << id;
+      const auto earlier = before.find(id);
+      if (earlier != before.end()) {
+        EXPECT_NEAR(a.age - earlier->second.age, 0.04f, 1e-5f) << "frame " << k << " id " << id;
+        ++followed;
+      } else {
+        // Emitted in one of the two steps since the previous frame: 0.04 or 0.02 s ago.
+        EXPECT_TRUE(std::fabs(a.age - 0.04f) < 1e-6f || std::fabs(a.age - 0.02f) < 1e-6f)
+            << "frame " << k << " id " << id << ": age " << a.age;
+        ++born;
+      }
+    }
+    const BgeoInfo info = read_bgeo_info(out("diffuse_bgeo/" + numbered(k, ".bgeo")));
+    std::set<std::string> floats;
+    for (const PointAttribute& a : info.point_attributes)
+      if (a.type == "float") floats.insert(a.name);
+    EXPECT_TRUE(floats.count("age") && floats.count("life")) << k;
+    before = now;
+  }
+  EXPECT_GT(followed, 100u);
+  EXPECT_GT(born, 100u);
 }
 
 TEST_F(Exports, AFarmRunsTheSimulationJobWhileTheVdbFilesAreMissing) {
