@@ -6,6 +6,7 @@
 
 #include "sim/core/cubic_spline.h"
 #include "sim/core/parallel.h"
+#include "sim/core/target_clones.h"
 #include "sim/diffuse/kernels.h"
 #include "sim/grid/block_buffer.h"
 #include "sim/geometry/solid_coverage.h"
@@ -30,7 +31,7 @@ void for_each_cell_block(const NeighbourGrid& grid, std::initializer_list<std::s
 // Built for AVX-512 (x86-64-v4), AVX2 and baseline x86-64, picked at load time: the same IEEE
 // arithmetic on each (no contraction). AVX-512 took a 15M lighthouse frame's potentials from 150 to
 // 118 ms (the square roots and the division per point).
-__attribute__((target_clones("arch=x86-64-v4", "avx2", "default"))) float velocity_difference(
+SPUME_CLONES_FOR_AVX512_AND_AVX2 float velocity_difference(
     const BlockBuffer& block, const Vec3f& xi, const Vec3f& vi, float h2, float inv_h) {
   const size_t m = block.size();
   const float *bx = block.x(), *by = block.y(), *bz = block.z();
