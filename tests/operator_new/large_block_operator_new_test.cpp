@@ -13,33 +13,15 @@
 #include <vector>
 
 #include "sim/core/huge_pages.h"
+#include "tests/support/huge_page_flags.h"
 #include "sim/core/sanitizers.h"
 
 namespace spume {
 namespace {
 
-bool kernel_has_huge_pages() { return std::ifstream("/sys/kernel/mm/transparent_hugepage/enabled").good(); }
-
-// The VmFlags line of the mapping that holds address `a`; empty when no mapping holds it.
-std::string vm_flags_at(const void* a) {
-  const uintptr_t x = reinterpret_cast<uintptr_t>(a);
-  std::ifstream smaps("/proc/self/smaps");
-  std::string line;
-  bool inside = false;
-  while (std::getline(smaps, line)) {
-    uintptr_t begin = 0, end = 0;
-    char dash = 0;
-    std::istringstream range(line);
-    if (range >> std::hex >> begin >> dash >> end && dash == '-') {
-      inside = begin <= x && x < end;
-    } else if (inside && line.rfind("VmFlags:", 0) == 0) {
-      return line;
-    }
-  }
-  return {};
-}
-
-bool advised(const void* a) { return vm_flags_at(a).find(" hg") != std::string::npos; }
+using testing::advised;
+using testing::kernel_has_huge_pages;
+using testing::vm_flags_at;
 
 constexpr size_t kMiB = size_t(1) << 20;
 
