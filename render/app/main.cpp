@@ -13,11 +13,11 @@
 #include "render/app/read_check_command.h"
 #include "render/app/startup_guard.h"
 #include "sim/core/error.h"
-#include "sim/io/contained_read.h"
 #include "sim/core/messages.h"
 #include "sim/core/out_of_memory.h"
 #include "sim/core/thread_budget.h"
 #include "sim/core/params.h"
+#include "sim/io/contained_read.h"
 #include "render/app/version_info.h"
 
 namespace spume {

@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
-namespace spume {
+#include "sim/io/contained_read.h"
 
-inline constexpr const char* kReadCheckWord = "__read-check";
+namespace spume {
 
 // Reads the file under the limits of a contained read, with one thread. Exit 0: read cleanly; 1:
 // "spume: error: MESSAGE" on stderr; otherwise whatever stopped it (abort, the alarm, the limit).

@@ -37,10 +37,11 @@ std::string library_of(const std::string& format) { return format == "vdb" ? "Op
 
 // The last line of `output` that is not blank.
 std::string last_line(const std::string& output) {
-  size_t end = output.find_last_not_of(" \n\r\t");
+  const size_t end = output.find_last_not_of(" \n\r\t");
   if (end == std::string::npos) return "(it printed nothing)";
-  const size_t begin = output.rfind('\n', end);
-  return output.substr(begin == std::string::npos ? 0 : begin + 1, end + 1 - (begin == std::string::npos ? 0 : begin + 1));
+  const size_t newline = output.rfind('\n', end);
+  const size_t begin = newline == std::string::npos ? 0 : newline + 1;
+  return output.substr(begin, end + 1 - begin);
 }
 
 // The child's environment: under AddressSanitizer, which takes no address-space limit, a cap on any
@@ -98,9 +99,10 @@ void check_read_in_child(const std::filesystem::path& path, const std::string& f
   }
   const std::string where = path.string();
   std::error_code size_error;
-  const uint64_t file_bytes = std::filesystem::file_size(path, size_error);
-  const uint64_t budget = contained_read_budget(size_error ? 0 : file_bytes);
-  const ProcessResult r = run_process({helper.string(), "__read-check", format, where, grid_name},
+  const uint64_t size = std::filesystem::file_size(path, size_error);
+  const uint64_t file_bytes = size_error ? 0 : size;
+  const uint64_t budget = contained_read_budget(file_bytes);
+  const ProcessResult r = run_process({helper.string(), kReadCheckWord, format, where, grid_name},
                                       child_environment(budget));
   if (!r.started)
     fail(where, ": cannot start spume's reader process (", helper.string(), ": ", r.start_error,

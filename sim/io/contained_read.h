@@ -13,6 +13,9 @@
 
 namespace spume {
 
+// The word that starts the child: `EXE __read-check FORMAT FILE GRID` (render/app/read_check_command.h).
+inline constexpr const char* kReadCheckWord = "__read-check";
+
 // Reads of untrusted files are checked in a child running `helper` (the spume command passes its own
 // executable). Call once, before any read.
 void contain_untrusted_reads(const std::filesystem::path& helper);
