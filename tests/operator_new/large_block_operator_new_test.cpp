@@ -6,15 +6,13 @@
 #include <sys/mman.h>
 
 #include <cstdint>
-#include <fstream>
-#include <sstream>
-#include <string>
 #include <new>
+#include <string>
 #include <vector>
 
 #include "sim/core/huge_pages.h"
-#include "tests/support/huge_page_flags.h"
 #include "sim/core/sanitizers.h"
+#include "tests/support/huge_page_flags.h"
 
 namespace spume {
 namespace {
