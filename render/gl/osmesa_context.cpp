@@ -44,10 +44,7 @@ OsmesaContext::OsmesaContext(int width, int height, const OsmesaOptions& options
 }
 
 OsmesaContext::~OsmesaContext() {
-  if (!context_) return;
-  // Unbound first: Mesa frees the framebuffer a context is current on only when it is released.
-  if (OSMesaGetCurrentContext() == static_cast<OSMesaContext>(context_)) OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
-  OSMesaDestroyContext(static_cast<OSMesaContext>(context_));
+  if (context_) OSMesaDestroyContext(static_cast<OSMesaContext>(context_));
 }
 
 void OsmesaContext::make_current(int width, int height) {
