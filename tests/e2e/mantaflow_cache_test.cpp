@@ -104,9 +104,13 @@ TEST(MantaflowCache, AVdbCutWhereOpenVdbAssertsIsAnErrorNamingTheFile) {
   testing::write_file(cut, bytes.substr(0, 122676));
   const CommandResult r = run_spume("info " + cut.string());
   EXPECT_EQ(r.status, 1) << r.output;
-  EXPECT_TRUE(contains(r.output, "spume info: error: " + cut.string() + ": OpenVDB stopped on one of its own checks"))
-      << r.output;
-  EXPECT_TRUE(contains(r.output, "it is damaged")) << r.output;
+  EXPECT_TRUE(contains(r.output, "spume info: error: " + cut.string() + ": ")) << r.output;
+  EXPECT_TRUE(contains(r.output, "damaged")) << r.output;
+  // Under AddressSanitizer (its allocator fills new blocks) OpenVDB reports a Blosc error on this page
+  // instead of asserting; elsewhere the abort is what the child must survive.
+  if (!kAddressSanitizer)
+    EXPECT_TRUE(contains(r.output, "spume info: error: " + cut.string() + ": OpenVDB stopped on one of its own checks"))
+        << r.output;
 }
 
 // Random damage, with a fixed seed: 24 copies of a real frame with one byte changed and 24 cut short,
