@@ -7,7 +7,6 @@
 #include "sim/core/error.h"
 #include "sim/core/out_of_memory.h"
 #include "sim/core/frame_spec.h"
-#include "sim/core/huge_pages.h"
 #include "sim/core/parallel.h"
 #include "sim/core/progress.h"
 #include "sim/core/stopwatch.h"
@@ -157,9 +156,6 @@ RenderStageSummary run_render_stage(PreparedRender& prepared, const nlohmann::js
   if (frames.empty()) return summary;
   const std::filesystem::path frames_dir = std::filesystem::path(expand_frame_pattern(pattern, 0)).parent_path();
 
-  // A frame's large arrays (the loaded particles, the surface grids, the screen bins) are fresh memory
-  // each frame; huge pages cut their faults (sim/core/huge_pages.h).
-  const HugePagesForLargeBlocks huge_pages;
   FrameRenderer renderer(settings);
   Progress progress("render " + scene.name, frames.size(), options.quiet);
   bool any_reconstructed = false, any_gl = false, any_volume = false;

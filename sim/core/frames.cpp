@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "sim/core/error.h"
+#include "sim/core/huge_pages.h"
 #include "sim/core/parallel.h"
 
 namespace spume {
@@ -59,19 +60,19 @@ void FluidFrame::validate(const std::string& where) const {
 }
 
 void DiffuseFrame::resize(size_t n) {
-  ids.resize(n);
-  positions.resize(n);
-  velocities.resize(n);
-  lifetimes.resize(n);
-  types.resize(n);
+  resize_in_huge_pages(ids, n);
+  resize_in_huge_pages(positions, n);
+  resize_in_huge_pages(velocities, n);
+  resize_in_huge_pages(lifetimes, n);
+  resize_in_huge_pages(types, n);
 }
 
 void DiffuseFrame::reserve(size_t n) {
-  ids.reserve(n);
-  positions.reserve(n);
-  velocities.reserve(n);
-  lifetimes.reserve(n);
-  types.reserve(n);
+  reserve_in_huge_pages(ids, n);
+  reserve_in_huge_pages(positions, n);
+  reserve_in_huge_pages(velocities, n);
+  reserve_in_huge_pages(lifetimes, n);
+  reserve_in_huge_pages(types, n);
 }
 
 std::array<size_t, kDiffuseTypeCount> DiffuseFrame::count_by_type() const { return count_types(types); }

@@ -5,8 +5,14 @@
 // anonymous memory in "always" mode.
 #include <sys/mman.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
+#include <new>
+#include <vector>
+
+#include "sim/core/out_of_memory.h"
 
 namespace spume {
 
@@ -19,22 +25,34 @@ inline void advise_huge_pages(void* p, size_t bytes) {
   if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
 }
 
-// While one of these lives (on any thread), the spume command's operator new
-// (render/app/large_block_operator_new.cpp) advises huge pages for every block of kHugePageRequestBytes or
-// more; in other executables it does nothing. For stages whose large arrays are fresh memory
-// again and again: the diffuse stage's grow with the particle count, frame after frame, and their
-// page faults were a large share of a 15M frame. Not for the whole program: the fluid solver
-// allocates its arrays once, and ran slower in huge pages (tests/bench/RESULTS.md §3.2).
-class HugePagesForLargeBlocks {
- public:
-  HugePagesForLargeBlocks();
-  ~HugePagesForLargeBlocks();
-  HugePagesForLargeBlocks(const HugePagesForLargeBlocks&) = delete;
-  HugePagesForLargeBlocks& operator=(const HugePagesForLargeBlocks&) = delete;
-
-  static bool active();
-};
-
+// Blocks this large are advised; a smaller one cannot hold more than a 2 MiB page or two.
 constexpr size_t kHugePageRequestBytes = size_t(4) << 20;
+
+// Makes room in v for n elements, its contents kept. A new block of kHugePageRequestBytes or more is
+// advised into 2 MiB pages before anything is written to it. For arrays that are fresh memory again and
+// again: the diffuse stage's grow with the particle count, frame after frame, and their page faults were
+// a large share of a 15M frame. Not for arrays allocated once: the fluid solver ran slower in huge pages
+// (tests/bench/RESULTS.md §4). A failure records its size for the out-of-memory message.
+template <typename T>
+void reserve_in_huge_pages(std::vector<T>& v, size_t n) {
+  if (n <= v.capacity()) return;
+  std::vector<T> grown;
+  try {
+    grown.reserve(n);
+  } catch (const std::bad_alloc&) {
+    record_failed_allocation(uint64_t(n) * sizeof(T));
+    throw;
+  }
+  if (n * sizeof(T) >= kHugePageRequestBytes) advise_huge_pages(grown.data(), n * sizeof(T));
+  grown.insert(grown.end(), std::make_move_iterator(v.begin()), std::make_move_iterator(v.end()));
+  v.swap(grown);
+}
+
+// v.resize(n), growing as std::vector does (at least doubling) into a block advised as above.
+template <typename T>
+void resize_in_huge_pages(std::vector<T>& v, size_t n) {
+  if (n > v.capacity()) reserve_in_huge_pages(v, std::max(n, 2 * v.size()));
+  v.resize(n);
+}
 
 }  // namespace spume

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "sim/core/huge_pages.h"
 #include "sim/core/parallel.h"
 
 namespace spume {
@@ -20,7 +21,7 @@ void RadixSorter::sort(std::span<const uint32_t> keys, int key_bits) {
   const size_t chunk_count = std::clamp<size_t>(n / (1 << 16), 1, 256);
   const size_t chunk = (n + chunk_count - 1) / chunk_count;
   offsets_.resize(chunk_count * buckets);  // [chunk][bucket] -> next output slot
-  order_.resize(n), keys_.resize(n), order_scratch_.resize(n), key_scratch_.resize(n);
+  for (std::vector<uint32_t>* v : {&order_, &keys_, &order_scratch_, &key_scratch_}) resize_in_huge_pages(*v, n);
 
   // Keys travel with their indices so that every pass reads sequentially. The first pass reads the
   // caller's keys and the identity order directly.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 
+#include "sim/core/huge_pages.h"
 #include "sim/core/parallel.h"
 #include "sim/diffuse/poly6_sums.h"
 #include "sim/grid/block_buffer.h"
@@ -18,15 +19,15 @@ constexpr uint32_t kFilterFrom = 6;
 void sample_fluid(const NeighbourGrid& grid, std::span<const Vec3f> sorted_motion, std::span<const Vec3f> positions,
                   FluidSamples& out) {
   const size_t n = positions.size();
-  out.neighbour_count.resize(n);
-  out.fluid_velocity.resize(n);
-  out.kernel_sum.resize(n);
+  resize_in_huge_pages(out.neighbour_count, n);
+  resize_in_huge_pages(out.fluid_velocity, n);
+  resize_in_huge_pages(out.kernel_sum, n);
 
   // Sort by half-cell (by cell on a grid too large for half-cell keys); particles away from all fluid
   // share the key one past the last and sort last.
   const bool halves = grid.key_count() <= NeighbourGrid::kMaxOctantKeys;
   const uint32_t outside = halves ? grid.key_count() * 8 : grid.key_count();
-  out.keys.resize(n);
+  resize_in_huge_pages(out.keys, n);
   parallel_for(n, 1 << 14, [&](size_t b, size_t e) {
     if (halves) grid.octant_keys(positions.subspan(b, e - b), std::span(out.keys).subspan(b, e - b));
     for (size_t i = b; i < e; ++i) {

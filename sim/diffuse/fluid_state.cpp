@@ -5,6 +5,7 @@
 
 #include "sim/core/error.h"
 #include "sim/core/frame_order.h"
+#include "sim/core/huge_pages.h"
 #include "sim/core/parallel.h"
 #include "sim/core/unusable_masses.h"
 
@@ -50,11 +51,11 @@ FramePair pair_frames(const FluidFrame& current, const FluidFrame* next, double 
 void interpolate_fluid(const FramePair& pair, float s, float uniform_mass, FluidStepState& out) {
   const FluidFrame& a = *pair.current;
   const size_t n = a.size();
-  out.positions.resize(n);
-  out.velocities.resize(n);
-  out.motion.resize(n);
-  out.masses.resize(n);
-  out.ids.resize(n);
+  resize_in_huge_pages(out.positions, n);
+  resize_in_huge_pages(out.velocities, n);
+  resize_in_huge_pages(out.motion, n);
+  resize_in_huge_pages(out.masses, n);
+  resize_in_huge_pages(out.ids, n);
   const float inv_dt = pair.frame_dt > 0.0 ? float(1.0 / pair.frame_dt) : 0.0f;
   const float dt = float(pair.frame_dt);
   parallel_for(n, 4096, [&](size_t b, size_t e) {

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "sim/core/error.h"
+#include "sim/core/huge_pages.h"
 #include "sim/core/parallel.h"
 #include "sim/io/diffuse_packing.h"
 
@@ -78,8 +79,8 @@ void occupied_cells(size_t n, SortedKey&& sorted_key, QuantizedDiffuse& out) {
       n, [&](size_t k) { return k == 0 || sorted_key(k) != sorted_key(k - 1); },
       [&](size_t k, size_t c) { first[c] = uint32_t(k); });
   first[occupied] = uint32_t(n);
-  out.cell_key_steps.resize(occupied);
-  out.cell_counts.resize(occupied);
+  resize_in_huge_pages(out.cell_key_steps, occupied);
+  resize_in_huge_pages(out.cell_counts, occupied);
   parallel_for(occupied, kGrain, [&](size_t begin, size_t end) {
     for (size_t c = begin; c < end; ++c) {
       out.cell_key_steps[c] = sorted_key(first[c]) - (c > 0 ? sorted_key(first[c - 1]) : 0);
@@ -314,12 +315,8 @@ DiffusePoints dequantize_points(const QuantizedDiffuse& in, size_t n, const std:
     fail(where, ": corrupt: quantized columns disagree in length");
   const CellTable cells = checked_cells(in, n, where);
   DiffusePoints points;
-  points.positions.reserve(n);
-  points.types.reserve(n);
-  advise_huge_pages(points.positions.data(), n * sizeof(Vec3f));
-  advise_huge_pages(points.types.data(), n);
-  points.positions.resize(n);
-  points.types.resize(n);
+  resize_in_huge_pages(points.positions, n);
+  resize_in_huge_pages(points.types, n);
   for_each_particle(in, cells, [&](size_t k, const uint64_t cell[3]) {
     points.positions[k] = position_of(in, n, k, cell);
     points.types[k] = type_of(in, k);

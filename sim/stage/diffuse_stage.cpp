@@ -9,7 +9,6 @@
 #include "sim/stage/diffuse_run_notes.h"
 #include "sim/stage/diffuse_stats_csv.h"
 #include "sim/io/file_identity.h"
-#include "sim/core/huge_pages.h"
 #include "sim/core/atomic_file.h"
 #include "sim/core/error.h"
 #include "sim/core/messages.h"
@@ -120,7 +119,6 @@ DiffuseStageSummary run_diffuse_stage(const SimScene& scene, const SceneInputs& 
   if (first > 0) summary.continued_from = frames[first];
   summary.why = options.force ? "--force" : match.why;
   remove_stage_record(cache_dir);
-  const HugePagesForLargeBlocks huge_pages;  // the frame's arrays grow with it: fresh memory every frame
   // The caches' buffers stay pooled from frame to frame, and go back to the system when the stage ends
   // (declared before the writer, so after its last file).
   struct ReleasePoolOnExit {

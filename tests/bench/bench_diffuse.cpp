@@ -14,7 +14,6 @@
 #include <random>
 #include <sys/resource.h>
 
-#include "sim/core/huge_pages.h"
 #include "sim/core/parallel.h"
 #include "sim/core/stopwatch.h"
 #include "sim/diffuse/simulator.h"
@@ -77,7 +76,6 @@ DiffuseFrame diffuse_like_a_real_frame(size_t n) {
 }
 
 void BM_DiffuseFrame(benchmark::State& state) {
-  const HugePagesForLargeBlocks huge_pages;  // as the pipeline's diffuse stage runs
   static const FluidFrame a = pool_frame(10, 10 / 50.0), b = pool_frame(11, 11 / 50.0);
   const size_t n = size_t(state.range(0));
   DiffuseSetup setup;

@@ -113,6 +113,20 @@ TEST(MantaflowCache, AVdbCutWhereOpenVdbAssertsIsAnErrorNamingTheFile) {
         << r.output;
 }
 
+// The frame cut at every tenth of its length: the points end inside a Blosc-compressed leaf, its
+// buffer or the grid's metadata; each cut is refused naming the file.
+TEST(MantaflowCache, AVdbCutAtEveryTenthOfItsLengthIsAnErrorNamingTheFile) {
+  testing::TempDir dir;
+  const std::string bytes = testing::read_file(kCopies / "data/fluid_data_0001.vdb");
+  for (size_t k = 1; k < 10; ++k) {
+    const fs::path cut = dir / ("cut_" + std::to_string(k) + ".vdb");
+    testing::write_file(cut, bytes.substr(0, bytes.size() * k / 10));
+    const CommandResult r = run_spume("info " + cut.string());
+    EXPECT_EQ(r.status, 1) << k << "/10: " << r.output;
+    EXPECT_TRUE(contains(r.output, "spume info: error: " + cut.string() + ": ")) << k << "/10: " << r.output;
+  }
+}
+
 // Random damage, with a fixed seed: 24 copies of a real frame with one byte changed and 24 cut short,
 // each at an offset drawn from the whole file. Every one ends in exit 0 or in exit 1 with a message
 // that names it, never in a signal (a shell reports those as 128 + N) or a hang.

@@ -1,4 +1,4 @@
-// Large allocations are advised transparent huge pages (sim/core/huge_pages.h): checked against the
+// Large arrays are advised transparent huge pages (sim/core/huge_pages.h): checked against the
 // kernel's own account of the mapping (the "hg" flag of /proc/self/smaps), not against the code.
 #include <gtest/gtest.h>
 #include <sys/mman.h>
@@ -34,6 +34,33 @@ TEST(HugePages, AdviceCoversTheWhole2MiBPagesInsideTheRangeAndNothingElse) {
   EXPECT_TRUE(advised(boundary + 6 * kMiB - 1));
   EXPECT_FALSE(advised(boundary + 6 * kMiB));
   munmap(map, bytes);
+}
+
+// A large array grown through resize_in_huge_pages is advised, keeps its elements and grows as
+// std::vector does; a plain vector of the same size is not advised, so the flag is the advice's.
+TEST(HugePages, ArraysGrownInHugePagesAreAdvisedAndKeepTheirElements) {
+  if (!kernel_has_huge_pages()) GTEST_SKIP() << "no transparent huge pages in this kernel";
+  std::vector<uint32_t> column(1000);
+  for (size_t i = 0; i < column.size(); ++i) column[i] = uint32_t(3 * i + 1);
+  // 64 MiB: above glibc's largest mmap threshold, so the block is a mapping of its own.
+  resize_in_huge_pages(column, 16 * kMiB);
+  ASSERT_EQ(column.size(), 16 * kMiB);
+  for (size_t i = 0; i < 1000; ++i) ASSERT_EQ(column[i], uint32_t(3 * i + 1)) << i;
+  for (size_t i = 1000; i < column.size(); i += 4099) ASSERT_EQ(column[i], 0u) << i;
+  const char* middle = reinterpret_cast<const char*>(column.data()) + 32 * kMiB;
+  EXPECT_TRUE(advised(middle)) << vm_flags_at(middle);
+  // Growing by one element at a time would copy the array each time: it at least doubles.
+  resize_in_huge_pages(column, 16 * kMiB + 1);
+  EXPECT_GE(column.capacity(), 32 * kMiB);
+  EXPECT_EQ(column[999], 3u * 999 + 1);
+
+  std::vector<uint32_t> plain;
+  plain.reserve(16 * kMiB);
+  EXPECT_FALSE(advised(reinterpret_cast<const char*>(plain.data()) + 32 * kMiB));
+  // Small arrays are left alone: they cannot hold a whole 2 MiB page worth the advice.
+  std::vector<uint32_t> small;
+  reserve_in_huge_pages(small, 1000);
+  EXPECT_GE(small.capacity(), 1000u);
 }
 
 }  // namespace

@@ -276,13 +276,8 @@ TEST(VdbPoints, BadFilesAreRefusedNamingTheFile) {
     else
       EXPECT_NE(e.find("cut.vdb"), std::string::npos) << "cut at " << cut << " of " << bytes.size() << ": " << e;
   }
-  // A real Mantaflow frame (Blosc-compressed leaves) cut at every tenth of its length.
-  const std::string real = io::read_file_bytes(kMantaflow / "data/fluid_data_0001.vdb");
-  for (size_t k = 1; k < 10; ++k) {
-    std::ofstream(dir / "cut_real.vdb", std::ios::binary).write(real.data(), std::streamsize(real.size() * k / 10));
-    e = error_of([&] { read_fluid_file(dir / "cut_real.vdb"); });
-    EXPECT_NE(e.find("cut_real.vdb"), std::string::npos) << "cut at " << k << "/10: " << e;
-  }
+  // Real Mantaflow frames cut short are read through the command, whose child contains what a cut
+  // Blosc page can make OpenVDB do (tests/e2e/mantaflow_cache_test.cpp).
 }
 
 TEST(VdbPoints, ZUpIsTurnedToYUpPositionsAndVelocities) {
