@@ -21,7 +21,11 @@ inline std::vector<Vec3f> lattice(const Vec3f& lo, const Vec3f& hi, float spacin
 inline void jitter(std::vector<Vec3f>& points, float amount, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> u(-amount, amount);
-  for (auto& p : points) p += Vec3f(u(rng), u(rng), u(rng));
+  for (auto& p : points) {
+    // One draw a statement: the order of a call's arguments is the compiler's choice.
+    const float dx = u(rng), dy = u(rng), dz = u(rng);
+    p += Vec3f(dx, dy, dz);
+  }
 }
 
 inline FluidStepState state_of(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& velocities,
