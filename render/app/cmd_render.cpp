@@ -8,9 +8,12 @@
 #include "sim/core/frame_spec.h"
 #include "render/app/commands.h"
 #include "sim/core/error.h"
+#include "sim/io/cache_layout.h"
 #include "sim/stage/simulate_scene.h"
+#include "sim/stage/stage_exports.h"
 #include "render/app/movie.h"
 #include "render/app/scene/scene_render.h"
+#include "render/stage/fog_export.h"
 #include "render/stage/render_stage.h"
 #include "render/app/scene/scene_args.h"
 #include "render/app/scene/scene_lock.h"
@@ -23,6 +26,8 @@ std::vector<cli::OptionSpec> render_options() {
   options.push_back({"frames", "SPEC", "render only these frames: 7, 0-99, 0-99:2, 1-3,5,10-20"});
   options.push_back({"overwrite", "", "render frames that already exist on disk"});
   options.push_back({"movie", "", "also encode OUT/<scene>/<scene>.mp4 with ffmpeg (if installed)"});
+  options.push_back({"fog", "VOXEL", "also write the diffuse frames as OpenVDB fog volumes with voxels of VOXEL m "
+                                     "(output.fog)"});
   return options;
 }
 
@@ -36,7 +41,19 @@ RenderStageSummary render_frames(const cli::ParsedArgs& args, const SceneSetup& 
   RenderStageOptions o;
   o.quiet = setup.quiet;
   o.overwrite = args.has("overwrite");
-  return run_render_stage(prepared, setup.render_keys, frames, o);
+  const RenderStageSummary summary = run_render_stage(prepared, setup.render_keys, frames, o);
+  // The fog volumes follow the diffuse caches' frames, as the other exports do (off: their files go).
+  const std::filesystem::path scene_out = setup.out_root / setup.sim.name;
+  bring_export_in_line(fog_export(prepared.settings, setup.sim.fog_voxel, scene_out),
+                       recorded_frames(diffuse_cache_path(scene_out, 0).parent_path(), {}), scene_out, setup.quiet);
+  return summary;
+}
+
+// Fog volumes are the diffuse material as drawn: a scene that draws none has nothing to fill.
+void check_fog_request(const SceneSetup& setup) {
+  if (setup.sim.fog_voxel > 0.0f && !setup.render.draws_diffuse())
+    fail("output.fog: ", setup.sim.fog_voxel, " asks for fog volumes of the diffuse material, but no type is drawn "
+         "(render.spray.radius, render.foam.radius and render.bubble.radius are all 0)");
 }
 
 void report(const char* what, bool ran, bool quiet) {
@@ -60,9 +77,15 @@ void finish_render(const RenderStageSummary& s, const cli::ParsedArgs& args, con
   }
 }
 
+std::vector<std::string> fog_override(const cli::ParsedArgs& args) {
+  if (auto voxel = args.value("fog")) return {"output.fog=" + *voxel};
+  return {};
+}
+
 int render(const cli::ParsedArgs& args) {
   if (auto frames = args.value("frames")) cli::check_frame_spec(*frames, "--frames");
-  const SceneSetup setup = load_scene_setup(args);
+  const SceneSetup setup = load_scene_setup(args, fog_override(args));
+  check_fog_request(setup);
   const auto lock = lock_scene_output(setup, OutputLock::Mode::Shared, "spume render");
   finish_render(render_frames(args, setup), args, setup);
   return 0;
@@ -70,7 +93,8 @@ int render(const cli::ParsedArgs& args) {
 
 int run(const cli::ParsedArgs& args) {
   if (auto frames = args.value("frames")) cli::check_frame_spec(*frames, "--frames");
-  const SceneSetup setup = load_scene_setup(args);
+  const SceneSetup setup = load_scene_setup(args, fog_override(args));
+  check_fog_request(setup);
   DiffuseStageOptions sim;
   sim.out_root = setup.out_root;
   sim.quiet = setup.quiet;

@@ -227,7 +227,7 @@ inline constexpr auto all = std::to_array<const KeySpec*>({&min, &max});
 }  // namespace domain
 
 // The exports: written from the caches after the stages, each with a record of its own
-// (stage/frame_export.h), so turning one on or off re-simulates nothing (no stage's keys hold them).
+// (io/frame_export.h), so turning one on or off re-simulates nothing (no stage's keys hold them).
 namespace output {
 inline constexpr KeySpec bgeo{.path = "output.bgeo", .type = Boolean, .value = {0},
                               .doc = "also write the diffuse frames as BGEO (Houdini, Blender)"};
@@ -236,7 +236,12 @@ inline constexpr KeySpec fluid_bgeo{.path = "output.fluid_bgeo", .type = Boolean
 inline constexpr KeySpec vdb{.path = "output.vdb", .type = Boolean, .value = {0},
                              .doc = "also write the diffuse frames as OpenVDB points (Houdini; positions within "
                                     "2 r / 131070, velocities as half floats)"};
-inline constexpr auto all = std::to_array<const KeySpec*>({&bgeo, &fluid_bgeo, &vdb});
+// Made by render and run, which know the radii the diffuse material is drawn with (io/fog_volumes.h).
+inline constexpr KeySpec fog{.path = "output.fog", .unit = "m", .value = {0}, .lo = 0, .hi = 1e3,
+                             .lo_bound = Closed, .hi_bound = Closed,
+                             .doc = "voxel size of fog volumes (OpenVDB: spray, foam, bubble, density, v) of the "
+                                    "diffuse frames as drawn, written by render and run; 0: none"};
+inline constexpr auto all = std::to_array<const KeySpec*>({&bgeo, &fluid_bgeo, &vdb, &fog});
 }  // namespace output
 
 }  // namespace spume::keys

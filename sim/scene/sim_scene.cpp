@@ -144,6 +144,7 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
   scene.write_bgeo = output.boolean(k::output::bgeo);
   scene.write_fluid_bgeo = output.boolean(k::output::fluid_bgeo);
   scene.write_vdb = output.boolean(k::output::vdb);
+  scene.fog_voxel = float(output.number(k::output::fog));
   if (scene.write_fluid_bgeo && scene.source != FluidSourceKind::Solver)
     output.fail_at("fluid_bgeo", "only scenes with fluid.source \"solver\" write fluid frames");
 
@@ -167,7 +168,7 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
     if (scene.fluid.fps != fluid.number(k::fluid::fps)) keys["fluid_import"]["fps"] = scene.fluid.fps;
   }
   // No output.* key: the exports are made from the caches, with records of their own
-  // (stage/frame_export.h), so turning one on or off re-simulates nothing.
+  // (io/frame_export.h), so turning one on or off re-simulates nothing.
   scene.fluid_keys = with_generation(keys);
   keys["diffuse"] = root.effective("diffuse");
   keys["domain"] = root.effective("domain");

@@ -44,6 +44,7 @@ struct SimScene {
   bool write_bgeo = false;              // also write diffuse frames as BGEO for Houdini/Blender
   bool write_fluid_bgeo = false;        // Solver: also write the fluid frames as BGEO
   bool write_vdb = false;               // also write diffuse frames as OpenVDB points (stage/stage_exports.h)
+  float fog_voxel = 0.0f;               // m; > 0: render writes fog volumes of the diffuse frames (io/fog_volumes.h)
 
   // Solver: the solver's settings and initial fluid. It simulates frames 0..frames->second (always
   // set for solver scenes: fluid.frames, declared in keys/scene_keys.h).

@@ -1,5 +1,5 @@
 #pragma once
-// The exports of a scene's stages (stage/frame_export.h), made from their caches:
+// The exports of a scene's stages (io/frame_export.h), made from their caches:
 //   diffuse_bgeo/diffuse_0000.bgeo   output.bgeo: the diffuse frames as classic BGEO (io/bgeo.h)
 //   diffuse_vdb/diffuse_0000.vdb     output.vdb: the diffuse frames as OpenVDB points (io/vdb_points_writer.h)
 //   fluid_bgeo/fluid_0000.bgeo       output.fluid_bgeo: the solver's fluid frames as classic BGEO
@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "sim/scene/sim_scene.h"
-#include "sim/stage/frame_export.h"
+#include "sim/io/frame_export.h"
 
 namespace spume {
 

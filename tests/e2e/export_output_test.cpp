@@ -1,7 +1,7 @@
-// The exports (`spume simulate --vdb`, `--bgeo`) through the binary: one file per diffuse frame holding
+// The exports (`spume simulate --vdb`, `--bgeo`, `spume run --fog`) through the binary: one file per diffuse frame holding
 // that frame's particles, nothing rewritten on a rerun, rewritten when the caches change, removed when
 // the option goes off (without re-simulating), none when never asked for, the same bytes for 1 and 2
-// threads; and never an earlier run's files beside the current run's (stage/frame_export.h).
+// threads; and never an earlier run's files beside the current run's (io/frame_export.h).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,6 +9,7 @@
 #include <fstream>
 #include <map>
 #include <set>
+#include <sstream>
 
 #include <openvdb/openvdb.h>
 #include <openvdb/io/File.h>
@@ -18,6 +19,7 @@
 #include "sim/io/bgeo.h"
 #include "sim/io/spume_cache.h"
 #include "tests/support/files.h"
+#include "tests/support/run_command.h"
 #include "tests/support/run_spume.h"
 #include "tests/support/temp_dir.h"
 #include "tests/support/text.h"
@@ -215,6 +217,70 @@ TEST_F(Exports, RenderAfterAnExportUsesTheCaches) {
   const CommandResult r = run_spume("render " + args("--set 'render.resolution=[64,36]' --frames 8"));
   EXPECT_EQ(r.status, 0) << r.output;
   EXPECT_FALSE(testing::contains(r.output, "output.")) << r.output;
+}
+
+// Fog volumes (`run --fog`, io/fog_volumes.h), read with OpenVDB's Python module (Debian's
+// python3-openvdb): one file per diffuse frame, each type's grid holding the volume of its particles
+// as drawn (N 4/3 pi r^3 at the render's radii), density their sum. Turning the fog on draws no PNG
+// frame again; turning it off removes its files.
+TEST_F(Exports, FogVolumesHoldEachTypesParticleVolumeReadByOpenVdbsPython) {
+  const std::string look = "--set 'render.resolution=[64,36]' --set render.spray.radius=0.006 "
+                           "--set render.foam.radius=0.03 --set render.bubble.radius=0.01 ";
+  ASSERT_EQ(run_spume("run " + args(look)).status, 0);
+  testing::mark_files(out("frames"));
+  CommandResult r = run_spume("run " + args(look + "--fog 0.02"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(testing::written_since_mark(out("frames")), std::vector<std::string>{}) << "frames drawn again";
+
+  testing::write_file(dir / "fog.py", R"(import sys, pyopenvdb as vdb
+for path in sys.argv[1:]:
+    grids, meta = vdb.readAll(path)
+    for g in grids:
+        if g.name != 'v':
+            s = g.transform.voxelSize()[0]
+            print(path[-8:-4], g.name, g.gridClass.replace(' ', '_'), repr(sum(i.value * i.count for i in g.citerOnValues()) * s ** 3))
+)");
+  std::string files;
+  for (int k = 1; k <= 8; ++k) files += " " + out(str("diffuse_fog/fog_000", k, ".vdb")).string();
+  const CommandResult py = testing::run_command("/usr/bin/python3 " + (dir / "fog.py").string() + files + " 2>&1");
+  ASSERT_EQ(py.status, 0) << py.output;
+  std::map<std::pair<int, std::string>, double> volume;
+  std::istringstream lines(py.output);
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream fields(line);
+    int frame = 0;
+    std::string grid, grid_class;
+    double v = 0.0;
+    ASSERT_TRUE(fields >> frame >> grid >> grid_class >> v) << line;
+    EXPECT_EQ(grid_class, "fog_volume") << line;
+    volume[{frame, grid}] = v;
+  }
+  const double radius[3] = {0.006, 0.03, 0.01};
+  size_t particles = 0;
+  for (int k = 1; k <= 8; ++k) {
+    const DiffuseFrame spd = read_diffuse_cache(out("diffuse/" + numbered(k, ".spd")));
+    const auto count = spd.count_by_type();
+    double all = 0.0;
+    for (int t = 0; t < kDiffuseTypeCount; ++t) {
+      const double expected = double(count[size_t(t)]) * 4.0 / 3.0 * M_PI * std::pow(radius[t], 3);
+      const double written = volume[{k, to_string(DiffuseType(t))}];
+      EXPECT_NEAR(written, expected, 1e-4 * expected + 1e-12)
+          << "frame " << k << ", " << to_string(DiffuseType(t));
+      all += expected;
+    }
+    const double density = volume[{k, "density"}];
+    EXPECT_NEAR(density, all, 1e-4 * all + 1e-12) << "frame " << k;
+    particles += spd.size();
+  }
+  EXPECT_GT(particles, 100u);
+
+  testing::mark_files(out("frames"));
+  r = run_spume("render " + args(look).replace(args().find("--quiet"), 7, ""));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(testing::contains(r.output, "diffuse_fog: removed 8 .vdb files of frames 1-8 (output.fog is off)"))
+      << r.output;
+  EXPECT_FALSE(fs::exists(out("diffuse_fog")));
+  EXPECT_EQ(testing::written_since_mark(out("frames")), std::vector<std::string>{}) << "frames drawn again";
 }
 
 // Houdini's age and life on every exported particle (at 25 fps and 2 substeps): the same particle is

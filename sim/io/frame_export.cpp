@@ -1,4 +1,4 @@
-#include "sim/stage/frame_export.h"
+#include "sim/io/frame_export.h"
 
 #include <algorithm>
 #include <map>

@@ -1,0 +1,142 @@
+#include "sim/io/fog_volumes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include <openvdb/openvdb.h>
+
+#include "sim/core/atomic_file.h"
+#include "sim/core/error.h"
+#include "sim/io/vdb_file_bytes.h"
+
+namespace spume {
+namespace {
+
+// Bump when the grids, their names or the splat change.
+constexpr int kFogLayout = 1;
+
+void check_look(const FogLook& look) {
+  if (!(look.voxel > 0.0f) || !std::isfinite(look.voxel))
+    fail("fog volumes: voxel size ", look.voxel, " m is not a positive number");
+  bool any = false;
+  for (float r : look.radius) {
+    if (!(r >= 0.0f) || !std::isfinite(r)) fail("fog volumes: radius ", r, " m is not a number >= 0");
+    any = any || r > 0.0f;
+  }
+  if (!any) fail("fog volumes: no diffuse type is drawn (every render.*.radius is 0), so there is nothing to fill");
+  // A sphere of 64 voxels' radius touches about a million voxels: far finer than anything drawn.
+  for (float r : look.radius)
+    if (r > 64.0f * look.voxel)
+      fail("fog volumes: a radius of ", r, " m is ", r / look.voxel, " voxels of ", look.voxel,
+           " m; at most 64 are allowed (choose a larger voxel)");
+}
+
+}  // namespace
+
+std::vector<VoxelWeight> sphere_voxel_weights(const Vec3f& centre, float radius, float voxel) {
+  std::vector<VoxelWeight> out;
+  const double c[3] = {double(centre.x()) / voxel, double(centre.y()) / voxel, double(centre.z()) / voxel};
+  const double r = double(radius) / voxel;  // in voxels
+  if (r <= 1.0) {
+    // Trilinear: the 8 voxel centres around the sphere's, weights summing to one, centroid kept.
+    int base[3];
+    double f[3];
+    for (int a = 0; a < 3; ++a) base[a] = int(std::floor(c[a])), f[a] = c[a] - base[a];
+    for (int corner = 0; corner < 8; ++corner) {
+      double w = 1.0;
+      std::array<int, 3> ijk;
+      for (int a = 0; a < 3; ++a) {
+        const int up = (corner >> a) & 1;
+        ijk[size_t(a)] = base[a] + up;
+        w *= up ? f[a] : 1.0 - f[a];
+      }
+      if (w > 0.0) out.push_back({ijk, w});
+    }
+  } else {
+    // Every voxel whose centre lies within r + 1/2: weight ramps from 1 (centre half a voxel inside
+    // the rim) to 0 (half a voxel outside), then normalised.
+    double sum = 0.0;
+    int lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) lo[a] = int(std::floor(c[a] - r - 0.5)), hi[a] = int(std::ceil(c[a] + r + 0.5));
+    for (int i = lo[0]; i <= hi[0]; ++i)
+      for (int j = lo[1]; j <= hi[1]; ++j)
+        for (int k = lo[2]; k <= hi[2]; ++k) {
+          const double d = std::sqrt((i - c[0]) * (i - c[0]) + (j - c[1]) * (j - c[1]) + (k - c[2]) * (k - c[2]));
+          const double w = std::clamp(r - d + 0.5, 0.0, 1.0);
+          if (w > 0.0) out.push_back({{i, j, k}, w}), sum += w;
+        }
+    for (VoxelWeight& v : out) v.weight /= sum;  // sum > 0: the nearest centre is within sqrt(3)/2 < r
+  }
+  return out;
+}
+
+std::string fog_volumes_format(const FogLook& look) {
+  return str("spume-fog ", kFogLayout, ", OpenVDB ", OPENVDB_LIBRARY_VERSION_STRING, ", voxel ", look.voxel,
+             ", radii ", look.radius[0], " ", look.radius[1], " ", look.radius[2], ", alpha ", look.alpha);
+}
+
+std::string fog_volume_bytes(const DiffuseFrame& frame, const FogLook& look) {
+  check_look(look);
+  initialize_openvdb();
+  const openvdb::math::Transform::Ptr transform = openvdb::math::Transform::createLinearTransform(look.voxel);
+  const double voxel_volume = double(look.voxel) * look.voxel * look.voxel;
+  std::array<openvdb::FloatGrid::Ptr, kDiffuseTypeCount> fraction;
+  const openvdb::FloatGrid::Ptr density = openvdb::FloatGrid::create(0.0f);
+  const openvdb::Vec3SGrid::Ptr velocity = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
+  for (int t = 0; t < kDiffuseTypeCount; ++t)
+    if (look.radius[size_t(t)] > 0.0f) fraction[size_t(t)] = openvdb::FloatGrid::create(0.0f);
+  // In particle order, one thread: float sums in a fixed order, so the bytes never change.
+  {
+    std::array<std::optional<openvdb::FloatGrid::Accessor>, kDiffuseTypeCount> type_at;
+    for (int t = 0; t < kDiffuseTypeCount; ++t)
+      if (fraction[size_t(t)]) type_at[size_t(t)].emplace(fraction[size_t(t)]->getAccessor());
+    auto density_at = density->getAccessor();
+    auto momentum_at = velocity->getAccessor();  // sum of fraction x velocity first, divided below
+    for (size_t i = 0; i < frame.size(); ++i) {
+      const size_t t = size_t(frame.types[i]);
+      if (t >= kDiffuseTypeCount || !type_at[t]) continue;
+      const double r = look.radius[t];
+      const double share = 4.0 / 3.0 * M_PI * r * r * r / voxel_volume;  // the sphere in voxels
+      const Vec3f& v = frame.velocities[i];
+      for (const VoxelWeight& w : sphere_voxel_weights(frame.positions[i], float(r), look.voxel)) {
+        const openvdb::Coord ijk(w.ijk[0], w.ijk[1], w.ijk[2]);
+        const float add = float(share * w.weight);
+        type_at[t]->setValue(ijk, type_at[t]->getValue(ijk) + add);
+        density_at.setValue(ijk, density_at.getValue(ijk) + add);
+        momentum_at.setValue(ijk, momentum_at.getValue(ijk) + openvdb::Vec3s(v.x(), v.y(), v.z()) * add);
+      }
+    }
+  }
+  for (auto it = velocity->beginValueOn(); it; ++it) {
+    const float d = density->tree().getValue(it.getCoord());
+    it.setValue(d > 0.0f ? *it / d : openvdb::Vec3s(0.0f));
+  }
+  openvdb::GridCPtrVec grids;
+  auto add = [&](const openvdb::GridBase::Ptr& grid, const std::string& name) {
+    grid->setTransform(transform);
+    grid->setName(name);
+    grid->insertMeta("frame", openvdb::Int32Metadata(frame.index));
+    grid->insertMeta("time", openvdb::DoubleMetadata(frame.time));
+    grid->insertMeta("alpha", openvdb::FloatMetadata(look.alpha));
+    grids.push_back(grid);
+  };
+  for (int t = 0; t < kDiffuseTypeCount; ++t)
+    if (fraction[size_t(t)]) {
+      fraction[size_t(t)]->setGridClass(openvdb::GRID_FOG_VOLUME);
+      fraction[size_t(t)]->insertMeta("radius", openvdb::FloatMetadata(look.radius[size_t(t)]));
+      add(fraction[size_t(t)], to_string(DiffuseType(t)));
+    }
+  density->setGridClass(openvdb::GRID_FOG_VOLUME);
+  add(density, "density");
+  velocity->setVectorType(openvdb::VEC_CONTRAVARIANT_RELATIVE);
+  add(velocity, "v");
+  return vdb_file_bytes(grids);
+}
+
+void write_fog_volumes(const std::filesystem::path& path, const DiffuseFrame& frame, const FogLook& look) {
+  const std::string bytes = with_context(path.string(), [&] { return fog_volume_bytes(frame, look); });
+  write_file_atomically(path, [&](std::ostream& out) { out.write(bytes.data(), std::streamsize(bytes.size())); });
+}
+
+}  // namespace spume
