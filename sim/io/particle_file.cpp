@@ -195,6 +195,24 @@ FluidFrame read_as_stored(const std::filesystem::path& path, const FluidReadOpti
   fail(path.string(), ": unsupported particle format");
 }
 
+// A file of volumes: each grid's class, voxels and (float grids) range and integral. spume's fog export
+// (io/fog_volumes.h) is named as such, since its integrals are its particles' volumes.
+void describe_volumes(std::ostringstream& out, const VdbContents& contents) {
+  bool fog = true;
+  for (const char* name : {"density", "v"})
+    fog = fog && std::any_of(contents.volumes.begin(), contents.volumes.end(),
+                             [&](const VdbVolumeInfo& v) { return v.name == name; });
+  out << "  content: " << (fog ? "spume fog volumes (output.fog)" : "volumes, no particles") << ", frame "
+      << contents.frame_index << ", time " << contents.time << " s\n";
+  for (const VdbVolumeInfo& v : contents.volumes) {
+    out << "    '" << v.name << "': " << v.grid_class << ", " << v.active_voxels << " active voxels";
+    if (v.scalar)
+      out << ", values " << v.min << " .. " << v.max << ", integral " << v.integral << " m^3"
+          << (fog && v.name != "density" ? " (the volume of its particles' spheres)" : "");
+    out << "\n";
+  }
+}
+
 void describe_vdb(std::ostringstream& out, const std::filesystem::path& path) {
   VdbPointsInfo info;
   VdbContents contents = read_vdb_contents(path, "", &info);
@@ -203,6 +221,10 @@ void describe_vdb(std::ostringstream& out, const std::filesystem::path& path) {
   for (const VdbGridInfo& g : info.grids)
     out << "    grid '" << g.name << "': " << g.type << ", voxel size " << g.voxel_size << " m, "
         << (g.points ? str(g.count, " points") : str(g.count, " active voxels")) << (g.used ? " (read)" : "") << "\n";
+  if (!contents.volumes.empty()) {
+    describe_volumes(out, contents);
+    return;
+  }
   out << "  point attributes:";
   for (const VdbAttributeInfo& a : info.attributes)
     out << " " << (info.grids.size() > 1 ? a.grid + "." : "") << a.name << " (" << a.type << ", " << a.codec << ")";

@@ -163,9 +163,40 @@ bool has_vdb_magic(const std::filesystem::path& path) {
 
 namespace {
 
-// Every point grid read (or the one named), merged in the file's order, with the checks every reader needs.
+// A grid of values read in full: its class, count and, for a float grid, range and integral.
+VdbVolumeInfo volume_info(const vdb::GridBase& grid) {
+  VdbVolumeInfo v;
+  v.name = grid.getName();
+  v.type = grid_type_summary(grid);
+  v.grid_class = vdb::GridBase::gridClassToString(grid.getGridClass());
+  v.voxel_size = grid.transform().voxelSize().x();
+  v.active_voxels = grid.activeVoxelCount();
+  if (const auto* floats = dynamic_cast<const vdb::FloatGrid*>(&grid)) {
+    v.scalar = true;
+    bool first = true;
+    double sum = 0.0;
+    for (auto it = floats->cbeginValueOn(); it; ++it) {
+      const double value = *it;
+      v.min = first ? value : std::min(v.min, value), v.max = first ? value : std::max(v.max, value), first = false;
+      sum += value * double(it.getVoxelCount());
+    }
+    v.integral = sum * v.voxel_size * v.voxel_size * v.voxel_size;
+  }
+  return v;
+}
+
+[[noreturn]] void fail_without_points(const std::string& where, const VdbPointsInfo& meta) {
+  std::string names;
+  for (const VdbGridInfo& g : meta.grids) names += str(names.empty() ? "" : ", ", "'", g.name, "' (", g.type, ")");
+  fail(where, ": holds no point data grid (its grids: ", names.empty() ? "none" : names,
+       "); spume reads particles, e.g. Mantaflow's 'particles' grid or Houdini's VDB points",
+       names.empty() ? "" : "; 'spume info' describes volumes");
+}
+
+// Every point grid read (or the one named), merged in the file's order, with the checks every reader
+// needs. A file without points fails, unless `volumes` is given: then its grids are read into it.
 GridRead read_vdb(const std::filesystem::path& path, const std::string& grid_name, VdbPointsInfo& meta,
-                  int& frame_index, double& frame_time) {
+                  int& frame_index, double& frame_time, std::vector<VdbVolumeInfo>* volumes) {
   initialize_openvdb();
   const std::string where = path.string();
   if (!has_vdb_magic(path)) fail(where, ": not an OpenVDB file (no VDB magic number at its start)");
@@ -228,6 +259,16 @@ GridRead read_vdb(const std::filesystem::path& path, const std::string& grid_nam
       }
       meta.grids.push_back(g);
     }
+    if (point_grids == 0 && volumes && !meta.grids.empty()) {
+      for (const VdbGridInfo& g : meta.grids) {
+        const vdb::GridBase::Ptr grid = file.readGrid(g.name);
+        volumes->push_back(volume_info(*grid));
+        if (const auto f = grid->getMetadata<vdb::Int32Metadata>("frame")) frame_index = f->value();
+        if (const auto t = grid->getMetadata<vdb::DoubleMetadata>("time")) frame_time = t->value();
+      }
+      file.close();
+      return GridRead{};
+    }
     file.close();
   } catch (const Error&) {
     throw;
@@ -240,12 +281,7 @@ GridRead read_vdb(const std::filesystem::path& path, const std::string& grid_nam
   } catch (const std::exception& e) {
     fail(where, ": cannot read this OpenVDB file (cut short or damaged?): ", e.what());
   }
-  if (point_grids == 0) {
-    std::string names;
-    for (const VdbGridInfo& g : meta.grids) names += str(names.empty() ? "" : ", ", "'", g.name, "' (", g.type, ")");
-    fail(where, ": holds no point data grid (its grids: ", names.empty() ? "none" : names,
-         "); spume reads particles, e.g. Mantaflow's 'particles' grid or Houdini's VDB points");
-  }
+  if (point_grids == 0) fail_without_points(where, meta);
   if (!grid_name.empty() && used_grids == 0) {
     std::string names;
     for (const VdbGridInfo& g : meta.grids)
@@ -297,7 +333,9 @@ VdbContents read_vdb_contents(const std::filesystem::path& path, const std::stri
   const std::string where = path.string();
   VdbPointsInfo local;
   VdbContents contents;
-  GridRead read = read_vdb(path, grid_name, info ? *info : local, contents.frame_index, contents.time);
+  GridRead read = read_vdb(path, grid_name, info ? *info : local, contents.frame_index, contents.time,
+                           &contents.volumes);
+  if (!contents.volumes.empty()) return contents;
   if (read.diffuse) {
     contents.diffuse = diffuse_frame(read, where);
     contents.diffuse->index = contents.frame_index;
@@ -318,7 +356,9 @@ VdbContents read_vdb_contents(const std::filesystem::path& path, const std::stri
 }
 
 FluidFrame read_vdb_points(const std::filesystem::path& path, const std::string& grid_name, VdbPointsInfo* info) {
-  VdbContents contents = read_vdb_contents(path, grid_name, info);
+  VdbPointsInfo local;
+  VdbContents contents = read_vdb_contents(path, grid_name, info ? info : &local);
+  if (!contents.volumes.empty()) fail_without_points(path.string(), info ? *info : local);
   if (contents.diffuse)
     fail(path.string(), ": holds spume's diffuse particles (spray, foam and bubbles with their lifetimes, types "
          "and 64-bit ids: output.vdb), not a fluid frame; 'spume info' describes it");

@@ -42,15 +42,27 @@ struct VdbPointsInfo {
 FluidFrame read_vdb_points(const std::filesystem::path& path, const std::string& grid = "",
                            VdbPointsInfo* info = nullptr);
 
+// A grid of values rather than points (a fog volume, a level set, a velocity field), as read in full.
+struct VdbVolumeInfo {
+  std::string name, type, grid_class;  // class as OpenVDB names it: "fog volume", "level set", "unknown"
+  double voxel_size = 0.0;             // m
+  uint64_t active_voxels = 0;
+  bool scalar = false;                 // a float grid: the figures below are set
+  double min = 0.0, max = 0.0;         // of its active values
+  double integral = 0.0;               // sum of its active values x voxel volume (m^3 for volume fractions)
+};
+
 // What a .vdb holds: fluid points, or spume's own diffuse export (io/vdb_points_writer.h: every point
 // grid read has `lifetime` (float), `type` (int32), `id` and a velocity; its ids are 64-bit).
 struct VdbContents {
   FluidFrame fluid;                     // the points, when they are not spume's diffuse export
   std::optional<DiffuseFrame> diffuse;  // spume's diffuse export, with its frame and time metadata
+  std::vector<VdbVolumeInfo> volumes;   // a file of volumes and no points (e.g. spume's fog export): its grids
   int frame_index = 0;                  // the grid's "frame" and "time" metadata, when it has them
   double time = 0.0;
 };
-// The same reading and errors as read_vdb_points, but spume's diffuse export is read as such.
+// The same reading and errors as read_vdb_points, but spume's diffuse export is read as such, and a
+// file of volumes only is described (`volumes`) instead of refused.
 VdbContents read_vdb_contents(const std::filesystem::path& path, const std::string& grid = "",
                               VdbPointsInfo* info = nullptr);
 

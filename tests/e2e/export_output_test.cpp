@@ -221,8 +221,8 @@ TEST_F(Exports, RenderAfterAnExportUsesTheCaches) {
 
 // Fog volumes (`run --fog`, io/fog_volumes.h), read with OpenVDB's Python module (Debian's
 // python3-openvdb): one file per diffuse frame, each type's grid holding the volume of its particles
-// as drawn (N 4/3 pi r^3 at the render's radii), density their sum. Turning the fog on draws no PNG
-// frame again; turning it off removes its files.
+// as drawn (N 4/3 pi r^3 at the render's radii), density their sum; `spume info` describes them.
+// Turning the fog on draws no PNG frame again; turning it off removes its files.
 TEST_F(Exports, FogVolumesHoldEachTypesParticleVolumeReadByOpenVdbsPython) {
   const std::string look = "--set 'render.resolution=[64,36]' --set render.spray.radius=0.006 "
                            "--set render.foam.radius=0.03 --set render.bubble.radius=0.01 ";
@@ -273,6 +273,11 @@ for path in sys.argv[1:]:
     particles += spd.size();
   }
   EXPECT_GT(particles, 100u);
+  // spume reads its own fog export back: info names it and gives each grid's integral.
+  const CommandResult info = run_spume("info " + out("diffuse_fog/fog_0008.vdb").string());
+  EXPECT_EQ(info.status, 0) << info.output;
+  EXPECT_TRUE(testing::contains(info.output, "content: spume fog volumes (output.fog), frame 8")) << info.output;
+  EXPECT_TRUE(testing::contains(info.output, "'density': fog volume, ")) << info.output;
 
   testing::mark_files(out("frames"));
   r = run_spume("render " + args(look).replace(args().find("--quiet"), 7, ""));
