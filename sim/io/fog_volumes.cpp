@@ -5,9 +5,11 @@
 #include <optional>
 
 #include <openvdb/openvdb.h>
+#include <openvdb/tools/Composite.h>
 
 #include "sim/core/atomic_file.h"
 #include "sim/core/error.h"
+#include "sim/core/parallel.h"
 #include "sim/io/vdb_file_bytes.h"
 
 namespace spume {
@@ -34,8 +36,8 @@ void check_look(const FogLook& look) {
 
 }  // namespace
 
-std::vector<VoxelWeight> sphere_voxel_weights(const Vec3f& centre, float radius, float voxel) {
-  std::vector<VoxelWeight> out;
+void sphere_voxel_weights(const Vec3f& centre, float radius, float voxel, std::vector<VoxelWeight>& out) {
+  out.clear();
   const double c[3] = {double(centre.x()) / voxel, double(centre.y()) / voxel, double(centre.z()) / voxel};
   const double r = double(radius) / voxel;  // in voxels
   if (r <= 1.0) {
@@ -68,8 +70,66 @@ std::vector<VoxelWeight> sphere_voxel_weights(const Vec3f& centre, float radius,
         }
     for (VoxelWeight& v : out) v.weight /= sum;  // sum > 0: the nearest centre is within sqrt(3)/2 < r
   }
+}
+
+std::vector<VoxelWeight> sphere_voxel_weights(const Vec3f& centre, float radius, float voxel) {
+  std::vector<VoxelWeight> out;
+  sphere_voxel_weights(centre, radius, voxel, out);
   return out;
 }
+
+namespace {
+
+constexpr size_t kChunk = size_t(1) << 18;  // particles a chunk: fixed by the data, never by the threads
+
+// One chunk's sums: the volume fraction per drawn type, their total, and fraction x velocity.
+struct FogGrids {
+  std::array<openvdb::FloatGrid::Ptr, kDiffuseTypeCount> fraction;
+  openvdb::FloatGrid::Ptr density;
+  openvdb::Vec3SGrid::Ptr momentum;
+
+  FogGrids() = default;
+  explicit FogGrids(const FogLook& look)
+      : density(openvdb::FloatGrid::create(0.0f)), momentum(openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f))) {
+    for (int t = 0; t < kDiffuseTypeCount; ++t)
+      if (look.radius[size_t(t)] > 0.0f) fraction[size_t(t)] = openvdb::FloatGrid::create(0.0f);
+  }
+
+  void splat(const DiffuseFrame& frame, size_t begin, size_t end, const FogLook& look, double voxel_volume,
+             std::vector<VoxelWeight>& weights) {
+    std::array<std::optional<openvdb::FloatGrid::Accessor>, kDiffuseTypeCount> type_at;
+    for (int t = 0; t < kDiffuseTypeCount; ++t)
+      if (fraction[size_t(t)]) type_at[size_t(t)].emplace(fraction[size_t(t)]->getAccessor());
+    auto density_at = density->getAccessor();
+    auto momentum_at = momentum->getAccessor();
+    for (size_t i = begin; i < end; ++i) {
+      const size_t t = size_t(frame.types[i]);
+      if (t >= kDiffuseTypeCount || !type_at[t]) continue;
+      const double r = look.radius[t];
+      const double share = 4.0 / 3.0 * M_PI * r * r * r / voxel_volume;  // the sphere in voxels
+      const openvdb::Vec3s v(frame.velocities[i].x(), frame.velocities[i].y(), frame.velocities[i].z());
+      sphere_voxel_weights(frame.positions[i], float(r), look.voxel, weights);
+      for (const VoxelWeight& w : weights) {
+        const openvdb::Coord ijk(w.ijk[0], w.ijk[1], w.ijk[2]);
+        const float add = float(share * w.weight);
+        type_at[t]->setValue(ijk, type_at[t]->getValue(ijk) + add);
+        density_at.setValue(ijk, density_at.getValue(ijk) + add);
+        momentum_at.setValue(ijk, momentum_at.getValue(ijk) + v * add);
+      }
+    }
+  }
+
+  // this += other, voxel by voxel (other is emptied).
+  void add(FogGrids& other) {
+    for (size_t t = 0; t < fraction.size(); ++t)
+      if (fraction[t]) openvdb::tools::compSum(*fraction[t], *other.fraction[t]);
+    openvdb::tools::compSum(*density, *other.density);
+    openvdb::tools::compSum(*momentum, *other.momentum);
+  }
+};
+
+}  // namespace
+
 
 std::string fog_volumes_format(const FogLook& look) {
   return str("spume-fog ", kFogLayout, ", OpenVDB ", OPENVDB_LIBRARY_VERSION_STRING, ", voxel ", look.voxel,
@@ -81,33 +141,22 @@ std::string fog_volume_bytes(const DiffuseFrame& frame, const FogLook& look) {
   initialize_openvdb();
   const openvdb::math::Transform::Ptr transform = openvdb::math::Transform::createLinearTransform(look.voxel);
   const double voxel_volume = double(look.voxel) * look.voxel * look.voxel;
-  std::array<openvdb::FloatGrid::Ptr, kDiffuseTypeCount> fraction;
-  const openvdb::FloatGrid::Ptr density = openvdb::FloatGrid::create(0.0f);
-  const openvdb::Vec3SGrid::Ptr velocity = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
-  for (int t = 0; t < kDiffuseTypeCount; ++t)
-    if (look.radius[size_t(t)] > 0.0f) fraction[size_t(t)] = openvdb::FloatGrid::create(0.0f);
-  // In particle order, one thread: float sums in a fixed order, so the bytes never change.
-  {
-    std::array<std::optional<openvdb::FloatGrid::Accessor>, kDiffuseTypeCount> type_at;
-    for (int t = 0; t < kDiffuseTypeCount; ++t)
-      if (fraction[size_t(t)]) type_at[size_t(t)].emplace(fraction[size_t(t)]->getAccessor());
-    auto density_at = density->getAccessor();
-    auto momentum_at = velocity->getAccessor();  // sum of fraction x velocity first, divided below
-    for (size_t i = 0; i < frame.size(); ++i) {
-      const size_t t = size_t(frame.types[i]);
-      if (t >= kDiffuseTypeCount || !type_at[t]) continue;
-      const double r = look.radius[t];
-      const double share = 4.0 / 3.0 * M_PI * r * r * r / voxel_volume;  // the sphere in voxels
-      const Vec3f& v = frame.velocities[i];
-      for (const VoxelWeight& w : sphere_voxel_weights(frame.positions[i], float(r), look.voxel)) {
-        const openvdb::Coord ijk(w.ijk[0], w.ijk[1], w.ijk[2]);
-        const float add = float(share * w.weight);
-        type_at[t]->setValue(ijk, type_at[t]->getValue(ijk) + add);
-        density_at.setValue(ijk, density_at.getValue(ijk) + add);
-        momentum_at.setValue(ijk, momentum_at.getValue(ijk) + openvdb::Vec3s(v.x(), v.y(), v.z()) * add);
-      }
+  // Fixed chunks of particles, each splatted in particle order into grids of its own, then added chunk
+  // by chunk in order: every voxel's float sum has the same order for any thread count.
+  const size_t chunks = std::max<size_t>(1, (frame.size() + kChunk - 1) / kChunk);
+  std::vector<FogGrids> part(chunks);
+  parallel_for(chunks, 1, [&](size_t cb, size_t ce) {
+    std::vector<VoxelWeight> weights;
+    for (size_t c = cb; c < ce; ++c) {
+      part[c] = FogGrids(look);
+      part[c].splat(frame, c * kChunk, std::min(frame.size(), (c + 1) * kChunk), look, voxel_volume, weights);
     }
-  }
+  });
+  FogGrids& all = part[0];
+  for (size_t c = 1; c < chunks; ++c) all.add(part[c]);
+  std::array<openvdb::FloatGrid::Ptr, kDiffuseTypeCount>& fraction = all.fraction;
+  const openvdb::FloatGrid::Ptr density = all.density;
+  const openvdb::Vec3SGrid::Ptr velocity = all.momentum;  // sum of fraction x velocity, divided below
   for (auto it = velocity->beginValueOn(); it; ++it) {
     const float d = density->tree().getValue(it.getCoord());
     it.setValue(d > 0.0f ? *it / d : openvdb::Vec3s(0.0f));

@@ -10,7 +10,7 @@
 // depth Eq. 9 gives the spheres where they do not overlap. Spheres no larger than a voxel are spread
 // over the 8 voxels around their centre (trilinear: centroid kept); larger ones over the voxels they
 // cover, each weighted by how far inside the sphere its centre lies (a one-voxel ramp at the rim).
-// Deterministic: the bytes depend only on the frame and the look.
+// Deterministic: the bytes depend only on the frame and the look, never on the thread count.
 #include <array>
 #include <filesystem>
 #include <string>
@@ -33,6 +33,7 @@ struct VoxelWeight {
 };
 // The voxels a sphere at `centre` (m) of `radius` spreads over, weights summing to one.
 std::vector<VoxelWeight> sphere_voxel_weights(const Vec3f& centre, float radius, float voxel);
+void sphere_voxel_weights(const Vec3f& centre, float radius, float voxel, std::vector<VoxelWeight>& out);
 
 // What fixes the bytes besides the frame, for records.
 std::string fog_volumes_format(const FogLook& look);
