@@ -80,17 +80,15 @@ std::vector<VoxelWeight> sphere_voxel_weights(const Vec3f& centre, float radius,
 
 namespace {
 
-constexpr size_t kChunk = size_t(1) << 18;  // particles a chunk: fixed by the data, never by the threads
+constexpr size_t kChunk = size_t(1) << 20;  // particles a chunk: fixed by the data, never by the threads
 
-// One chunk's sums: the volume fraction per drawn type, their total, and fraction x velocity.
+// One chunk's sums: the volume fraction per drawn type and their total x velocity.
 struct FogGrids {
   std::array<openvdb::FloatGrid::Ptr, kDiffuseTypeCount> fraction;
-  openvdb::FloatGrid::Ptr density;
   openvdb::Vec3SGrid::Ptr momentum;
 
   FogGrids() = default;
-  explicit FogGrids(const FogLook& look)
-      : density(openvdb::FloatGrid::create(0.0f)), momentum(openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f))) {
+  explicit FogGrids(const FogLook& look) : momentum(openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f))) {
     for (int t = 0; t < kDiffuseTypeCount; ++t)
       if (look.radius[size_t(t)] > 0.0f) fraction[size_t(t)] = openvdb::FloatGrid::create(0.0f);
   }
@@ -100,7 +98,6 @@ struct FogGrids {
     std::array<std::optional<openvdb::FloatGrid::Accessor>, kDiffuseTypeCount> type_at;
     for (int t = 0; t < kDiffuseTypeCount; ++t)
       if (fraction[size_t(t)]) type_at[size_t(t)].emplace(fraction[size_t(t)]->getAccessor());
-    auto density_at = density->getAccessor();
     auto momentum_at = momentum->getAccessor();
     for (size_t i = begin; i < end; ++i) {
       const size_t t = size_t(frame.types[i]);
@@ -113,7 +110,6 @@ struct FogGrids {
         const openvdb::Coord ijk(w.ijk[0], w.ijk[1], w.ijk[2]);
         const float add = float(share * w.weight);
         type_at[t]->setValue(ijk, type_at[t]->getValue(ijk) + add);
-        density_at.setValue(ijk, density_at.getValue(ijk) + add);
         momentum_at.setValue(ijk, momentum_at.getValue(ijk) + v * add);
       }
     }
@@ -123,7 +119,6 @@ struct FogGrids {
   void add(FogGrids& other) {
     for (size_t t = 0; t < fraction.size(); ++t)
       if (fraction[t]) openvdb::tools::compSum(*fraction[t], *other.fraction[t]);
-    openvdb::tools::compSum(*density, *other.density);
     openvdb::tools::compSum(*momentum, *other.momentum);
   }
 };
@@ -155,8 +150,14 @@ std::string fog_volume_bytes(const DiffuseFrame& frame, const FogLook& look) {
   FogGrids& all = part[0];
   for (size_t c = 1; c < chunks; ++c) all.add(part[c]);
   std::array<openvdb::FloatGrid::Ptr, kDiffuseTypeCount>& fraction = all.fraction;
-  const openvdb::FloatGrid::Ptr density = all.density;
   const openvdb::Vec3SGrid::Ptr velocity = all.momentum;  // sum of fraction x velocity, divided below
+  // The total, added type by type in type order.
+  const openvdb::FloatGrid::Ptr density = openvdb::FloatGrid::create(0.0f);
+  for (const openvdb::FloatGrid::Ptr& f : fraction)
+    if (f) {
+      const openvdb::FloatGrid::Ptr copy = f->deepCopy();
+      openvdb::tools::compSum(*density, *copy);
+    }
   for (auto it = velocity->beginValueOn(); it; ++it) {
     const float d = density->tree().getValue(it.getCoord());
     it.setValue(d > 0.0f ? *it / d : openvdb::Vec3s(0.0f));
