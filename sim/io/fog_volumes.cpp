@@ -125,7 +125,6 @@ struct FogGrids {
 
 }  // namespace
 
-
 std::string fog_volumes_format(const FogLook& look) {
   return str("spume-fog ", kFogLayout, ", OpenVDB ", OPENVDB_LIBRARY_VERSION_STRING, ", voxel ", look.voxel,
              ", radii ", look.radius[0], " ", look.radius[1], " ", look.radius[2], ", alpha ", look.alpha);

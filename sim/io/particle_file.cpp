@@ -198,17 +198,18 @@ FluidFrame read_as_stored(const std::filesystem::path& path, const FluidReadOpti
 // A file of volumes: each grid's class, voxels and (float grids) range and integral. spume's fog export
 // (io/fog_volumes.h) is named as such, since its integrals are its particles' volumes.
 void describe_volumes(std::ostringstream& out, const VdbContents& contents) {
-  bool fog = true;
-  for (const char* name : {"density", "v"})
-    fog = fog && std::any_of(contents.volumes.begin(), contents.volumes.end(),
-                             [&](const VdbVolumeInfo& v) { return v.name == name; });
+  auto has = [&](const char* name) {
+    return std::any_of(contents.volumes.begin(), contents.volumes.end(),
+                       [&](const VdbVolumeInfo& v) { return v.name == name; });
+  };
+  const bool fog = has("density") && has("v") && (has("spray") || has("foam") || has("bubble"));
   out << "  content: " << (fog ? "spume fog volumes (output.fog)" : "volumes, no particles") << ", frame "
       << contents.frame_index << ", time " << contents.time << " s\n";
   for (const VdbVolumeInfo& v : contents.volumes) {
     out << "    '" << v.name << "': " << v.grid_class << ", " << v.active_voxels << " active voxels";
     if (v.scalar)
-      out << ", values " << v.min << " .. " << v.max << ", integral " << v.integral << " m^3"
-          << (fog && v.name != "density" ? " (the volume of its particles' spheres)" : "");
+      out << ", values " << v.min << " .. " << v.max << ", integral " << v.integral
+          << (!fog ? " (values x m^3)" : v.name == "density" ? " m^3" : " m^3 (the volume of its particles' spheres)");
     out << "\n";
   }
 }
