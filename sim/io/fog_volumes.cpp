@@ -17,6 +17,7 @@ namespace {
 
 // Bump when the grids, their names or the splat change.
 constexpr int kFogLayout = 1;
+constexpr double kMostVoxelWrites = 2e10;  // about an hour of splatting on one core
 
 void check_look(const FogLook& look) {
   if (!(look.voxel > 0.0f) || !std::isfinite(look.voxel))
@@ -132,6 +133,16 @@ std::string fog_volumes_format(const FogLook& look) {
 
 std::string fog_volume_bytes(const DiffuseFrame& frame, const FogLook& look) {
   check_look(look);
+  // The splat's work: each sphere touches about 4/3 pi (r/voxel + 1)^3 voxels (8 at least). A voxel far
+  // too small for a frame would run for hours: refuse it with the figures.
+  const auto count = frame.count_by_type();
+  double writes = 0.0;
+  for (size_t t = 0; t < kDiffuseTypeCount; ++t)
+    if (look.radius[t] > 0.0f)
+      writes += double(count[t]) * std::max(8.0, 4.19 * std::pow(look.radius[t] / look.voxel + 1.0, 3.0));
+  if (writes > kMostVoxelWrites)
+    fail("fog volumes: voxels of ", look.voxel, " m would have this frame's ", frame.size(), " particles write about ",
+         writes, " voxel values, over the ", kMostVoxelWrites, " allowed; choose a larger voxel (output.fog)");
   initialize_openvdb();
   const openvdb::math::Transform::Ptr transform = openvdb::math::Transform::createLinearTransform(look.voxel);
   const double voxel_volume = double(look.voxel) * look.voxel * look.voxel;

@@ -206,6 +206,18 @@ TEST(FogVolumes, UnusableLooksAreErrorsNamingWhatIsWrong) {
   EXPECT_NE(message(look).find("no diffuse type is drawn"), std::string::npos) << message(look);
   look.radius = {1.0f, 0, 0};
   EXPECT_NE(message(look).find("at most 64 are allowed"), std::string::npos) << message(look);
+  // 30,000 spheres of 60 voxels' radius, about a million voxels each: over the bound, said with figures.
+  DiffuseFrame many;
+  many.resize(30'000);
+  for (size_t i = 0; i < many.size(); ++i) many.types[i] = DiffuseType::Foam, many.ids[i] = i, many.lifetimes[i] = 1;
+  look.voxel = 0.001f;
+  look.radius = {0.0f, 0.06f, 0.0f};
+  try {
+    fog_volume_bytes(many, look);
+    ADD_FAILURE() << "a voxel far too small was not refused";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("choose a larger voxel (output.fog)"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
