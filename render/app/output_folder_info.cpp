@@ -14,8 +14,9 @@ std::optional<OutputFolder> describe_output_folder(const fs::path& dir) {
     const char* folder;
     const char* what;
   };
-  const std::vector<Stage> stages = {{"fluid", "fluid caches"}, {"diffuse", "diffuse caches"},
-                                     {"diffuse_vdb", "diffuse .vdb export"}};
+  const std::vector<Stage> stages = {{"fluid", "fluid caches"},          {"fluid_bgeo", "fluid .bgeo export"},
+                                     {"diffuse", "diffuse caches"},      {"diffuse_bgeo", "diffuse .bgeo export"},
+                                     {"diffuse_vdb", "diffuse .vdb export"}, {"diffuse_fog", "fog volumes export"}};
   std::string text, details;
   size_t found = 0, warnings = 0;
   for (const Stage& s : stages) {

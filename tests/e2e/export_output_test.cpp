@@ -278,6 +278,8 @@ for path in sys.argv[1:]:
   EXPECT_EQ(info.status, 0) << info.output;
   EXPECT_TRUE(testing::contains(info.output, "content: spume fog volumes (output.fog), frame 8")) << info.output;
   EXPECT_TRUE(testing::contains(info.output, "'density': fog volume, ")) << info.output;
+  const CommandResult folder = run_spume("info " + out("").string());
+  EXPECT_TRUE(testing::contains(folder.output, "fog volumes export (diffuse_fog/): frames 1-8")) << folder.output;
 
   testing::mark_files(out("frames"));
   r = run_spume("render " + args(look).replace(args().find("--quiet"), 7, ""));
