@@ -45,7 +45,7 @@ Command cmd_simulate() {
   spec.options = scene_command_options();
   spec.options.push_back(
       {"frames", "A-B", "simulate only frames A to B, clamped to the scene's (diffuse material starts empty at A)"});
-  spec.options.push_back({"bgeo", "", "also write the diffuse frames as BGEO (Houdini, Blender)"});
+  spec.options.push_back({"bgeo", "", "also write the diffuse frames as BGEO (Houdini)"});
   spec.options.push_back({"vdb", "", "also write the diffuse frames as OpenVDB points (Houdini)"});
   spec.options.push_back({"force", "", "simulate even when the caches are current"});
   return {spec, simulate};

@@ -234,6 +234,10 @@ void describe_vdb(std::ostringstream& out, const std::filesystem::path& path) {
     out << "  content: spume diffuse particles (output.vdb), frame " << contents.frame_index << ", time "
         << contents.time << " s\n";
     describe_diffuse(out, *contents.diffuse);
+    if (!contents.diffuse_ages.empty()) {
+      const auto [young, old] = std::minmax_element(contents.diffuse_ages.begin(), contents.diffuse_ages.end());
+      out << "  age: " << *young << " .. " << *old << " s since birth (Houdini's age; life = age + lifetime)\n";
+    }
     if (contents.diffuse->size() > 0) {
       const auto [lo, hi] = std::minmax_element(contents.diffuse->ids.begin(), contents.diffuse->ids.end());
       out << "  ids: " << *lo << " .. " << *hi << " (64-bit: parent fluid id, birth step, sample)\n";

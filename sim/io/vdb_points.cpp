@@ -73,6 +73,7 @@ struct GridRead {
   bool diffuse = false;
   std::vector<float> lifetimes;
   std::vector<int32_t> types;
+  std::vector<float> ages;  // Houdini's `age`, when the export carries it
 };
 
 GridRead read_point_grid(const vpts::PointDataGrid& grid, const std::string& where) {
@@ -119,6 +120,8 @@ GridRead read_point_grid(const vpts::PointDataGrid& grid, const std::string& whe
   const auto lifetime = find_attribute(d, "lifetime"), type = find_attribute(d, "type");
   out.diffuse = lifetime && type && attribute_type(d, *lifetime).first == "float" &&
                 attribute_type(d, *type).first == "int32";
+  auto age = find_attribute(d, "age");
+  if (!out.diffuse || (age && attribute_type(d, *age).first != "float")) age.reset();
 
   const vdb::math::Transform& xform = grid.transform();
   for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) {
@@ -142,6 +145,7 @@ GridRead read_point_grid(const vpts::PointDataGrid& grid, const std::string& whe
       if (out.diffuse) {
         out.lifetimes.push_back(vpts::AttributeHandle<float>(leaf->constAttributeArray(*lifetime)).get(*i));
         out.types.push_back(vpts::AttributeHandle<int32_t>(leaf->constAttributeArray(*type)).get(*i));
+        if (age) out.ages.push_back(vpts::AttributeHandle<float>(leaf->constAttributeArray(*age)).get(*i));
       }
     }
   }
@@ -255,6 +259,7 @@ GridRead read_vdb(const std::filesystem::path& path, const std::string& grid_nam
         append(all.ids, read.ids);
         append(all.masses, read.masses);
         append(all.lifetimes, read.lifetimes);
+        append(all.ages, read.ages);
         append(all.types, read.types);
       }
       meta.grids.push_back(g);
@@ -338,6 +343,7 @@ VdbContents read_vdb_contents(const std::filesystem::path& path, const std::stri
   if (!contents.volumes.empty()) return contents;
   if (read.diffuse) {
     contents.diffuse = diffuse_frame(read, where);
+    if (read.ages.size() == contents.diffuse->size()) contents.diffuse_ages = std::move(read.ages);
     contents.diffuse->index = contents.frame_index;
     contents.diffuse->time = contents.time;
     return contents;

@@ -57,6 +57,7 @@ struct VdbVolumeInfo {
 struct VdbContents {
   FluidFrame fluid;                     // the points, when they are not spume's diffuse export
   std::optional<DiffuseFrame> diffuse;  // spume's diffuse export, with its frame and time metadata
+  std::vector<float> diffuse_ages;      // its particles' `age` (s), when every grid read carries it
   std::vector<VdbVolumeInfo> volumes;   // a file of volumes and no points (e.g. spume's fog export): its grids
   int frame_index = 0;                  // the grid's "frame" and "time" metadata, when it has them
   double time = 0.0;

@@ -230,7 +230,7 @@ inline constexpr auto all = std::to_array<const KeySpec*>({&min, &max});
 // (io/frame_export.h), so turning one on or off re-simulates nothing (no stage's keys hold them).
 namespace output {
 inline constexpr KeySpec bgeo{.path = "output.bgeo", .type = Boolean, .value = {0},
-                              .doc = "also write the diffuse frames as BGEO (Houdini, Blender)"};
+                              .doc = "also write the diffuse frames as BGEO (Houdini)"};
 inline constexpr KeySpec fluid_bgeo{.path = "output.fluid_bgeo", .type = Boolean, .value = {0},
                                     .doc = "solver scenes: also write the fluid frames as BGEO"};
 inline constexpr KeySpec vdb{.path = "output.vdb", .type = Boolean, .value = {0},

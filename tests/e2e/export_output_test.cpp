@@ -322,6 +322,18 @@ TEST_F(Exports, AgeGrowsByOneFrameIntervalAndLifeMinusAgeIsTheRemainingLifetime)
   }
   EXPECT_GT(followed, 100u);
   EXPECT_GT(born, 100u);
+  // spume info reads the ages back: at frame 8 the youngest was born one step ago (0.02 s) at the least,
+  // the oldest at frame 1's first step (7/25 s) at the most.
+  const CommandResult info = run_spume("info " + out("diffuse_vdb/" + numbered(8, ".vdb")).string());
+  const size_t at = info.output.find("  age: ");
+  ASSERT_NE(at, std::string::npos) << info.output;
+  std::istringstream ages(info.output.substr(at + 7));
+  double young = -1, old = -1;
+  std::string dots;
+  ASSERT_TRUE(ages >> young >> dots >> old) << info.output;
+  EXPECT_GE(young, 0.02 - 1e-6);
+  EXPECT_LE(old, 7.0 / 25.0 + 1e-6);
+  EXPECT_LT(young, old);
 }
 
 TEST_F(Exports, AFarmRunsTheSimulationJobWhileTheVdbFilesAreMissing) {
