@@ -8,14 +8,12 @@
 #include "sim/core/frame_spec.h"
 #include "render/app/commands.h"
 #include "sim/core/error.h"
-#include "sim/io/cache_layout.h"
 #include "sim/stage/simulate_scene.h"
-#include "sim/stage/stage_exports.h"
 #include "render/app/movie.h"
 #include "render/app/scene/scene_render.h"
-#include "render/stage/fog_export.h"
 #include "render/stage/render_stage.h"
 #include "render/app/scene/scene_args.h"
+#include "render/app/scene/scene_fog.h"
 #include "render/app/scene/scene_lock.h"
 
 namespace spume {
@@ -42,18 +40,8 @@ RenderStageSummary render_frames(const cli::ParsedArgs& args, const SceneSetup& 
   o.quiet = setup.quiet;
   o.overwrite = args.has("overwrite");
   const RenderStageSummary summary = run_render_stage(prepared, setup.render_keys, frames, o);
-  // The fog volumes follow the diffuse caches' frames, as the other exports do (off: their files go).
-  const std::filesystem::path scene_out = setup.out_root / setup.sim.name;
-  bring_export_in_line(fog_export(prepared.settings, setup.sim.fog_voxel, scene_out),
-                       recorded_frames(diffuse_cache_path(scene_out, 0).parent_path(), {}), scene_out, setup.quiet);
+  bring_fog_in_line(setup);
   return summary;
-}
-
-// Fog volumes are the diffuse material as drawn: a scene that draws none has nothing to fill.
-void check_fog_request(const SceneSetup& setup) {
-  if (setup.sim.fog_voxel > 0.0f && !setup.render.draws_diffuse())
-    fail("output.fog: ", setup.sim.fog_voxel, " asks for fog volumes of the diffuse material, but no type is drawn "
-         "(render.spray.radius, render.foam.radius and render.bubble.radius are all 0)");
 }
 
 void report(const char* what, bool ran, bool quiet) {

@@ -6,6 +6,7 @@
 #include "sim/core/error.h"
 #include "sim/stage/simulate_scene.h"
 #include "render/app/scene/scene_args.h"
+#include "render/app/scene/scene_fog.h"
 #include "render/app/scene/scene_lock.h"
 
 namespace spume {
@@ -18,6 +19,7 @@ int simulate(const cli::ParsedArgs& args) {
   if (args.has("bgeo")) overrides.push_back("output.bgeo=true");
   if (args.has("vdb")) overrides.push_back("output.vdb=true");
   const SceneSetup setup = load_scene_setup(args, overrides);
+  check_fog_request(setup);
   DiffuseStageOptions sim;
   sim.out_root = setup.out_root;
   sim.quiet = setup.quiet;
@@ -25,6 +27,7 @@ int simulate(const cli::ParsedArgs& args) {
   if (frames) sim.frames = *frames;
   const auto lock = lock_scene_output(setup, OutputLock::Mode::Exclusive, "spume simulate");
   const SceneSimulation result = simulate_scene(setup.sim, sim);
+  bring_fog_in_line(setup);  // the fog follows the caches just made, or goes with output.fog off
   if (!setup.quiet) {
     if (result.fluid.reused) std::fprintf(stderr, "fluid: caches are current, solver not run\n");
     if (result.diffuse.reused) std::fprintf(stderr, "diffuse: caches are current, nothing simulated\n");

@@ -290,6 +290,33 @@ for path in sys.argv[1:]:
   EXPECT_EQ(testing::written_since_mark(out("frames")), std::vector<std::string>{}) << "frames drawn again";
 }
 
+// The staleness case for fog: simulating again with other keys rewrites the fog from the new
+// caches (foam's integral is the new count's volume, read by spume info), and a simulation without
+// output.fog removes it, as it removes the other exports.
+TEST_F(Exports, ASimulationKeepsTheFogInLineWithTheCachesItMakes) {
+  const std::string look = "--set 'render.resolution=[64,36]' --set render.foam.radius=0.03 ";
+  ASSERT_EQ(run_spume("run " + args(look + "--fog 0.02")).status, 0);
+  testing::mark_files(out("diffuse_fog"));
+  CommandResult r = run_spume("simulate " + args(look + "--set output.fog=0.02 --set diffuse.seed=9"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_FALSE(testing::written_since_mark(out("diffuse_fog")).empty()) << "fog left from the earlier caches";
+  const size_t foam = read_diffuse_cache(out("diffuse/" + numbered(8, ".spd"))).count_by_type()[size_t(DiffuseType::Foam)];
+  ASSERT_GT(foam, 0u);
+  const CommandResult info = run_spume("info " + out("diffuse_fog/fog_0008.vdb").string());
+  const size_t at = info.output.find("'foam': fog volume, ");
+  ASSERT_NE(at, std::string::npos) << info.output;
+  const size_t integral = info.output.find("integral ", at);
+  ASSERT_NE(integral, std::string::npos) << info.output;
+  const double expected = double(foam) * 4.0 / 3.0 * M_PI * 0.03 * 0.03 * 0.03;
+  EXPECT_NEAR(std::stod(info.output.substr(integral + 9)), expected, 1e-4 * expected) << info.output;
+
+  r = run_spume("simulate " + args(look + "--set diffuse.seed=9").replace(args().find("--quiet"), 7, ""));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(testing::contains(r.output, "diffuse_fog: removed 8 .vdb files of frames 1-8 (output.fog is off)"))
+      << r.output;
+  EXPECT_FALSE(fs::exists(out("diffuse_fog")));
+}
+
 // Houdini's age and life on every exported particle (at 25 fps and 2 substeps): the same particle is
 // 1/25 s older each frame; one new since the previous frame was emitted at the start of one of the two
 // steps since (0.04 or 0.02 s ago); life - age is the remaining lifetime. The BGEO files carry the
