@@ -1,7 +1,8 @@
 #pragma once
 // The fog volumes export (output.fog, sim/io/fog_volumes.h): the diffuse caches as OpenVDB fog
-// volumes, with the radii and absorption the render draws them with, so it is made by the render
-// stage's commands rather than by simulate. Like the other exports (sim/io/frame_export.h):
+// volumes, with the radii and absorption the render draws them with, so it lives on the render side
+// (the commands keep it in line: render/app/scene/scene_fog.h). Like the other exports
+// (sim/io/frame_export.h):
 //   diffuse_fog/fog_0000.vdb    one per frame the diffuse caches hold, by their record
 // Changing a radius, the absorption or the voxel size writes the files again; no PNG frame depends on it.
 #include <filesystem>
