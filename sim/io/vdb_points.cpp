@@ -171,9 +171,8 @@ namespace {
 VdbVolumeInfo volume_info(const vdb::GridBase& grid) {
   VdbVolumeInfo v;
   v.name = grid.getName();
-  v.type = grid_type_summary(grid);
   v.grid_class = vdb::GridBase::gridClassToString(grid.getGridClass());
-  v.voxel_size = grid.transform().voxelSize().x();
+  const double voxel = grid.transform().voxelSize().x();
   v.active_voxels = grid.activeVoxelCount();
   if (const auto* floats = dynamic_cast<const vdb::FloatGrid*>(&grid)) {
     v.scalar = true;
@@ -184,7 +183,7 @@ VdbVolumeInfo volume_info(const vdb::GridBase& grid) {
       v.min = first ? value : std::min(v.min, value), v.max = first ? value : std::max(v.max, value), first = false;
       sum += value * double(it.getVoxelCount());
     }
-    v.integral = sum * v.voxel_size * v.voxel_size * v.voxel_size;
+    v.integral = sum * voxel * voxel * voxel;
   }
   return v;
 }

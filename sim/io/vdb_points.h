@@ -44,8 +44,7 @@ FluidFrame read_vdb_points(const std::filesystem::path& path, const std::string&
 
 // A grid of values rather than points (a fog volume, a level set, a velocity field), as read in full.
 struct VdbVolumeInfo {
-  std::string name, type, grid_class;  // class as OpenVDB names it: "fog volume", "level set", "unknown"
-  double voxel_size = 0.0;             // m
+  std::string name, grid_class;  // class as OpenVDB names it: "fog volume", "level set", "unknown"
   uint64_t active_voxels = 0;
   bool scalar = false;                 // a float grid: the figures below are set
   double min = 0.0, max = 0.0;         // of its active values
