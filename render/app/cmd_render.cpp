@@ -26,6 +26,7 @@ std::vector<cli::OptionSpec> render_options() {
   options.push_back({"movie", "", "also encode OUT/<scene>/<scene>.mp4 with ffmpeg (if installed)"});
   options.push_back({"fog", "VOXEL", "also write the diffuse frames as OpenVDB fog volumes with voxels of VOXEL m "
                                      "(output.fog)"});
+  options.push_back({"exr", "", "also write each frame as multilayer OpenEXR beside its PNG (render.exr)"});
   return options;
 }
 
@@ -51,6 +52,7 @@ void report(const char* what, bool ran, bool quiet) {
 void finish_render(const RenderStageSummary& s, const cli::ParsedArgs& args, const SceneSetup& setup) {
   if (!setup.quiet) {
     std::fprintf(stderr, "render: %d frames written, %d current on disk, %.1f s\n", s.written, s.skipped, s.seconds);
+    if (s.exr_removed > 0) std::fprintf(stderr, "render: removed %d EXR frames of an earlier run (render.exr is off)\n", s.exr_removed);
     if (s.stale_elsewhere > 0)
       std::fprintf(stderr, "render: %d other frames on disk are stale for the current keys or caches (not rendered: "
                    "outside --frames)\n", s.stale_elsewhere);
@@ -65,14 +67,17 @@ void finish_render(const RenderStageSummary& s, const cli::ParsedArgs& args, con
   }
 }
 
-std::vector<std::string> fog_override(const cli::ParsedArgs& args) {
-  if (auto voxel = args.value("fog")) return {"output.fog=" + *voxel};
-  return {};
+// The export flags as the keys they stand for.
+std::vector<std::string> export_overrides(const cli::ParsedArgs& args) {
+  std::vector<std::string> keys;
+  if (auto voxel = args.value("fog")) keys.push_back("output.fog=" + *voxel);
+  if (args.has("exr")) keys.push_back("render.exr=true");
+  return keys;
 }
 
 int render(const cli::ParsedArgs& args) {
   if (auto frames = args.value("frames")) cli::check_frame_spec(*frames, "--frames");
-  const SceneSetup setup = load_scene_setup(args, fog_override(args));
+  const SceneSetup setup = load_scene_setup(args, export_overrides(args));
   check_fog_request(setup);
   const auto lock = lock_scene_output(setup, OutputLock::Mode::Shared, "spume render");
   finish_render(render_frames(args, setup), args, setup);
@@ -81,7 +86,7 @@ int render(const cli::ParsedArgs& args) {
 
 int run(const cli::ParsedArgs& args) {
   if (auto frames = args.value("frames")) cli::check_frame_spec(*frames, "--frames");
-  const SceneSetup setup = load_scene_setup(args, fog_override(args));
+  const SceneSetup setup = load_scene_setup(args, export_overrides(args));
   check_fog_request(setup);
   DiffuseStageOptions sim;
   sim.out_root = setup.out_root;

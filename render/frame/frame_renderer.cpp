@@ -16,6 +16,7 @@ namespace {
 SurfacePassOptions pass_options(const RenderSettings& s) {
   SurfacePassOptions o;
   o.supersample = s.supersample;
+  o.opaque_colour = s.exr;  // the EXR's opaque and sky layers
   return o;
 }
 
@@ -27,6 +28,7 @@ SceneSolid scene_solid(const SolidMesh& s) {
 
 FrameRenderer::FrameRenderer(RenderSettings settings)
     : settings_(std::move(settings)), surface_pass_(pass_options(settings_)) {
+  settings_.volume.split_types = settings_.exr;
   if (settings_.camera.empty()) fail("render: no camera (the caller frames the scene when the scene has none)");
 }
 
@@ -36,7 +38,7 @@ Camera FrameRenderer::camera_at_time(double time) const {
   return camera;
 }
 
-ImageRGB8 FrameRenderer::render(const FrameInputs& in, FrameReport* report) {
+RenderedFrame FrameRenderer::render_frame(const FrameInputs& in, FrameReport* report) {
   FrameReport r;
   const Camera camera = camera_at_time(in.time);
 
@@ -82,16 +84,26 @@ ImageRGB8 FrameRenderer::render(const FrameInputs& in, FrameReport* report) {
   r.surface_seconds = t0.seconds();
 
   ImageRGBf colour = background.colour;
+  std::optional<VolumeImage> diffuse;
   if (volume_needed) {
-    const VolumeImage image = volume.valid() ? volume.get() : volume_pass();
+    diffuse = volume.valid() ? volume.get() : volume_pass();
     r.volume = true;
     r.spheres = volume_stats.spheres;
     t0.restart();
-    colour = composite(image, background.colour);
+    colour = composite(*diffuse, background.colour);
     r.composite_seconds = t0.seconds();
   }
+  RenderedFrame out;
+  if (settings_.exr) {
+    t0.restart();
+    std::array<bool, kDiffuseTypeCount> drawn{};
+    for (int k = 0; k < kDiffuseTypeCount; ++k) drawn[size_t(k)] = settings_.volume.drawn(DiffuseType(k));
+    out.layers = frame_layers(colour, background, diffuse ? &*diffuse : nullptr, drawn, camera);
+    r.layers_seconds = t0.seconds();
+  }
+  out.image = to_srgb8(colour);
   if (report) *report = r;
-  return to_srgb8(colour);
+  return out;
 }
 
 }  // namespace spume

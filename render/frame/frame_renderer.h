@@ -5,10 +5,12 @@
 // not drawn or there is no fluid, no GL context when nothing shows geometry, no volume pass when no
 // drawn diffuse particle exists. The volume pass runs on a thread of its own beside the surface pass
 // (one after the other with --threads 1).
+#include <optional>
 #include <span>
 #include <vector>
 
 #include "render/camera/camera.h"
+#include "render/frame/frame_layers.h"
 #include "render/gl/surface_pass.h"
 #include "render/image/image.h"
 #include "render/frame/render_settings.h"
@@ -40,14 +42,22 @@ struct FrameReport {
   bool reconstructed = false, used_gl = false, volume = false;
   size_t triangles = 0, spheres = 0;
   double reconstruct_seconds = 0, surface_seconds = 0, volume_seconds = 0, composite_seconds = 0;
+  double layers_seconds = 0;  // taking the frame apart for its EXR (RenderSettings::exr)
   SurfacePassStats surface;  // the surface pass by stage
+};
+
+// The PNG's image and, with RenderSettings::exr, the frame's layers.
+struct RenderedFrame {
+  ImageRGB8 image;
+  std::optional<FrameLayers> layers;
 };
 
 class FrameRenderer {
  public:
   explicit FrameRenderer(RenderSettings settings);
   // Call from one thread (the OSMesa context is the calling thread's); each stage is parallel inside.
-  ImageRGB8 render(const FrameInputs& inputs, FrameReport* report = nullptr);
+  ImageRGB8 render(const FrameInputs& inputs, FrameReport* report = nullptr) { return render_frame(inputs, report).image; }
+  RenderedFrame render_frame(const FrameInputs& inputs, FrameReport* report = nullptr);
   const RenderSettings& settings() const { return settings_; }
   Camera camera_at_time(double time) const;
 

@@ -65,6 +65,10 @@ bool RenderSettings::draws_diffuse() const {
   return false;
 }
 
+std::string RenderSettings::exr_pattern() const {
+  return std::filesystem::path(frame_pattern).replace_extension(".exr").string();
+}
+
 RenderSettings read_render_settings(const ParamReader& render, float particle_radius) {
   RenderSettings s;
   if (render.has(k::resolution.name())) {
@@ -133,6 +137,7 @@ RenderSettings read_render_settings(const ParamReader& render, float particle_ra
   if (extension != ".png")
     render.fail_at("frames", str("\"", s.frame_pattern, "\" ends in \"", extension.empty() ? "(no extension)" : extension,
                                  "\"; spume writes PNG frames, so the name must end in .png, e.g. \"frames/%04d.png\""));
+  s.exr = render.boolean(k::exr);
   return s;
 }
 

@@ -29,9 +29,12 @@ struct RenderSettings {
   std::optional<float> ground_height;  // m; absent: just below the lowest solid or particle
   WaterLook water;
   std::string frame_pattern = keys::render::frames.choices;
+  bool exr = keys::render::exr.value[0] != 0.0;  // also each frame's layers as OpenEXR (frame/frame_layers.h)
 
   // True when some diffuse type is drawn (else the diffuse stage and the volume pass are left out).
   bool draws_diffuse() const;
+  // The EXR beside each PNG: frame_pattern with its extension .exr.
+  std::string exr_pattern() const;
 };
 
 // `particle_radius` (m) sets the radius defaults.

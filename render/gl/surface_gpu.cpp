@@ -170,8 +170,8 @@ void SurfacePass::Gpu::shade_water() {
 
 SurfaceOutputs SurfacePass::Gpu::full_size_outputs(bool with_water) const {
   return {with_water ? targets.final_image.id() : targets.opaque.id(),
-          with_water ? targets.front_faces.id() : targets.opaque.id(), targets.opaque.id(), GL_COLOR_ATTACHMENT1,
-          GL_COLOR_ATTACHMENT1};
+          with_water ? targets.front_faces.id() : targets.opaque.id(), targets.opaque.id(), targets.opaque.id(),
+          GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT0};
 }
 
 SurfaceOutputs SurfacePass::Gpu::downsample_outputs(bool with_water, int supersample, int out_w, int out_h) {
@@ -182,10 +182,10 @@ SurfaceOutputs SurfacePass::Gpu::downsample_outputs(bool with_water, int supersa
   if (!downsample)
     downsample = std::make_unique<GlProgram>(shaders::sky_vertex(), shaders::downsample_fragment(), "down-sampling");
   downsample->use();
-  const GLuint inputs[3] = {with_water ? targets.final_colour.id() : targets.opaque_colour.id(),
+  const GLuint inputs[4] = {with_water ? targets.final_colour.id() : targets.opaque_colour.id(),
                             with_water ? targets.final_depth.id() : targets.opaque_depth.id(),
-                            targets.opaque_depth.id()};
-  for (GLuint unit = 0; unit < 3; ++unit) {
+                            targets.opaque_depth.id(), targets.opaque_colour.id()};
+  for (GLuint unit = 0; unit < 4; ++unit) {
     glActiveTexture(GL_TEXTURE0 + unit);
     glBindTexture(GL_TEXTURE_2D, inputs[unit]);
   }
@@ -193,10 +193,10 @@ SurfaceOutputs SurfacePass::Gpu::downsample_outputs(bool with_water, int supersa
   glUniform1i(glGetUniformLocation(downsample->id(), "u_ss"), supersample);
   draw_full_screen();
   const GLuint r = targets.resolved.id();
-  return {r, r, r, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+  return {r, r, r, r, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
 }
 
-SurfaceImage SurfacePass::Gpu::read_back(const SurfaceOutputs& from, int w, int h) {
+SurfaceImage SurfacePass::Gpu::read_back(const SurfaceOutputs& from, int w, int h, bool opaque_colour) {
   SurfaceImage out;
   out.colour = ImageRGBf(w, h);
   out.depth.resize(size_t(w) * h);
@@ -210,6 +210,10 @@ SurfaceImage SurfacePass::Gpu::read_back(const SurfaceOutputs& from, int w, int 
   read(from.colour_fb, GL_COLOR_ATTACHMENT0, GL_RGB, out.colour.rgb.front().data());
   read(from.depth_fb, from.depth_attachment, GL_RED, out.depth.data());
   read(from.opaque_fb, from.opaque_attachment, GL_RED, out.opaque_depth.data());
+  if (opaque_colour) {
+    out.opaque_colour = ImageRGBf(w, h);
+    read(from.opaque_colour_fb, from.opaque_colour_attachment, GL_RGB, out.opaque_colour.rgb.front().data());
+  }
   glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
   check_gl("reading the surface pass back");
   return out;

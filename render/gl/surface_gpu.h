@@ -13,11 +13,11 @@
 
 namespace spume {
 
-// Where the read-back finds the three outputs: a framebuffer and colour attachment each (the colour
+// Where the read-back finds the four outputs: a framebuffer and colour attachment each (the colour
 // is attachment 0).
 struct SurfaceOutputs {
-  GLuint colour_fb, depth_fb, opaque_fb;
-  GLenum depth_attachment, opaque_attachment;
+  GLuint colour_fb, depth_fb, opaque_fb, opaque_colour_fb;
+  GLenum depth_attachment, opaque_attachment, opaque_colour_attachment;
 };
 
 struct SurfacePass::Gpu {
@@ -71,7 +71,8 @@ struct SurfacePass::Gpu {
   SurfaceOutputs downsample_outputs(bool with_water, int supersample, int out_w, int out_h);
   // Reads the float targets back as they are, straight into the image's arrays (llvmpipe copies
   // them; about 5 ms at 1920x1080).
-  static SurfaceImage read_back(const SurfaceOutputs& from, int w, int h);
+  // The opaque image (pass 1) only when opaque_colour is asked for.
+  static SurfaceImage read_back(const SurfaceOutputs& from, int w, int h, bool opaque_colour);
 };
 
 }  // namespace spume

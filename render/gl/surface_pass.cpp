@@ -51,6 +51,7 @@ SurfaceImage SurfacePass::render(const SurfaceScene& scene, const Camera& camera
   SurfacePassStats st;
   SurfaceImage out =
       scene.shows_geometry() ? render_gl(scene, camera, st) : render_background(scene.environment, camera);
+  if (options_.opaque_colour && out.opaque_colour.pixel_count() == 0) out.opaque_colour = out.colour;
   st.seconds = stopwatch.seconds();
   if (stats) *stats = st;
   return out;
@@ -90,7 +91,7 @@ SurfaceImage SurfacePass::render_gl(const SurfaceScene& scene, const Camera& cam
   const SurfaceOutputs outputs =
       ss > 1 ? g.downsample_outputs(water, ss, camera.width, camera.height) : g.full_size_outputs(water);
   st.seconds_resolve = clock.lap();
-  SurfaceImage out = Gpu::read_back(outputs, camera.width, camera.height);
+  SurfaceImage out = Gpu::read_back(outputs, camera.width, camera.height, options_.opaque_colour);
   st.seconds_readback = clock.lap();
   return out;
 }

@@ -54,12 +54,14 @@ struct SurfaceImage {
   ImageRGBf colour;                 // linear RGB, top row first (values may exceed 1: the sun)
   std::vector<float> depth;         // m along the view axis to the nearest thing drawn, water included; +inf: sky
   std::vector<float> opaque_depth;  // the same ignoring the water: where the diffuse march must stop
+  ImageRGBf opaque_colour;          // SurfacePassOptions::opaque_colour only: pass 1, what lies under the water
 };
 
 struct SurfacePassOptions {
   // Render at this factor per axis and box-filter down (anti-aliasing; depths take the nearest sample).
   // 1 by default: 2 costs 2.5-3x the time on llvmpipe (960x540, wave frames 48-52: 0.09 s at 1, 0.24 s at 2).
   int supersample = 1;
+  bool opaque_colour = false;  // also read back pass 1's image (the EXR frames' layers)
   OsmesaOptions gl;
 };
 

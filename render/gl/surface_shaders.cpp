@@ -109,22 +109,26 @@ std::string downsample_fragment() {
 layout(binding = 0) uniform sampler2D u_colour;
 layout(binding = 1) uniform sampler2D u_depth;
 layout(binding = 2) uniform sampler2D u_opaque_depth;
+layout(binding = 3) uniform sampler2D u_opaque_colour;
 uniform int u_ss;
 layout(location = 0) out vec4 o_colour;
 layout(location = 1) out float o_depth;
 layout(location = 2) out float o_opaque_depth;
+layout(location = 3) out vec4 o_opaque_colour;
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
-  vec3 c = vec3(0.0);
+  vec3 c = vec3(0.0), oc = vec3(0.0);
   float d = positive_infinity(), od = positive_infinity();
   for (int j = 0; j < u_ss; ++j)
     for (int i = 0; i < u_ss; ++i) {
       ivec2 t = p * u_ss + ivec2(i, j);
       c += texelFetch(u_colour, t, 0).rgb;
+      oc += texelFetch(u_opaque_colour, t, 0).rgb;
       d = min(d, texelFetch(u_depth, t, 0).r);
       od = min(od, texelFetch(u_opaque_depth, t, 0).r);
     }
   o_colour = vec4(c / float(u_ss * u_ss), 1.0);
+  o_opaque_colour = vec4(oc / float(u_ss * u_ss), 1.0);
   o_depth = d;
   o_opaque_depth = od;
 }

@@ -16,7 +16,8 @@ void SurfaceTargets::resize(int w, int h, int out_w, int out_h) {
     out_width = out_w, out_height = out_h;
     resolved_colour = GlTexture(GL_RGBA32F, out_w, out_h);
     resolved_depth = GlTexture(GL_R32F, out_w, out_h), resolved_opaque = GlTexture(GL_R32F, out_w, out_h);
-    const GLuint ids[3] = {resolved_colour.id(), resolved_depth.id(), resolved_opaque.id()};
+    resolved_opaque_colour = GlTexture(GL_RGBA32F, out_w, out_h);
+    const GLuint ids[4] = {resolved_colour.id(), resolved_depth.id(), resolved_opaque.id(), resolved_opaque_colour.id()};
     resolved = GlFramebuffer(ids, 0, "down-sampled output");
   }
   if (w == width && h == height) return;

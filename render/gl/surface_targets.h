@@ -6,7 +6,8 @@
 //   front_faces  the water's front faces (pass 3): normal, linear depth (final_depth) over final_z
 //   final_image  the shaded water over the opaque image (pass 4): final_colour over final_z, whose
 //                stencil marks the water's pixels
-// Output size, supersampling only: resolved (colour, depth, opaque depth), box-filtered (pass 5).
+// Output size, supersampling only: resolved (colour, depth, opaque depth, opaque colour), box-filtered
+// (pass 5).
 // Linear depths are m along the view axis, +inf where nothing was drawn.
 #include "render/gl/gl_objects.h"
 
@@ -17,7 +18,7 @@ struct SurfaceTargets {
   GlTexture opaque_colour, opaque_depth, opaque_z, back_z, front_normal, final_colour, final_depth, final_z;
   GlFramebuffer opaque, back_faces, front_faces, final_image;
   int out_width = 0, out_height = 0;
-  GlTexture resolved_colour, resolved_depth, resolved_opaque;
+  GlTexture resolved_colour, resolved_depth, resolved_opaque, resolved_opaque_colour;
   GlFramebuffer resolved;
 
   // Targets of w x h and, when the output's out_w x out_h differs, the resolved ones. Keeps whatever

@@ -111,12 +111,15 @@ inline constexpr KeySpec sun_direction{.path = "render.sun_direction", .type = V
                                        .doc = "direction towards the sun (normalised)"};
 inline constexpr KeySpec frames{.path = "render.frames", .type = Text, .choices = "frames/%04d.png",
                                 .doc = "output pattern under OUT/<scene>/ (%04d, %d or ####), ending in .png"};
+inline constexpr KeySpec exr{.path = "render.exr", .type = Boolean, .value = {0},
+                             .doc = "also write each frame as multilayer OpenEXR beside its PNG (.exr): half-float "
+                                    "linear beauty, Z, and a layer per element (README: EXR frames)"};
 
 inline constexpr auto all = std::to_array<const KeySpec*>(
     {&resolution, &spp, &seed, &camera, &camera_position, &camera_target, &camera_fov, &camera_keys, &key_time,
      &key_position, &key_target, &key_fov, &surface, &surface_cell, &surface_smoothing, &solids, &supersample,
      &integrator, &march_step, &alpha, &spray_radius, &spray_color, &foam_radius, &foam_color, &bubble_radius,
      &bubble_color, &water_absorption, &water_ior, &water_roughness, &water_deep_color, &water_refraction,
-     &water_scene_reflections, &ground, &ground_height, &sun_direction, &frames});
+     &water_scene_reflections, &ground, &ground_height, &sun_direction, &frames, &exr});
 
 }  // namespace spume::keys::render

@@ -22,8 +22,9 @@ class PngWriterThread {
   PngWriterThread& operator=(const PngWriterThread&) = delete;
   ~PngWriterThread();  // waits for the file in flight; its error and its `done` are dropped
 
-  // finish()es the previous file, then writes this one; `done` runs once it is on disk.
-  void write(std::filesystem::path path, ImageRGB8 image, std::string record, Done done);
+  // finish()es the previous file, then runs `before` (another file of the frame, or nothing) and writes
+  // this one; `done` runs once both are on disk, with the seconds they took.
+  void write(std::filesystem::path path, ImageRGB8 image, std::string record, std::function<void()> before, Done done);
   // Waits for the file in flight and runs its `done`; rethrows its error (which names the file).
   void finish();
 

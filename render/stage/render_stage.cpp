@@ -10,6 +10,7 @@
 #include "sim/core/parallel.h"
 #include "sim/core/progress.h"
 #include "sim/core/stopwatch.h"
+#include "render/frame/frame_exr.h"
 #include "render/image/png_io.h"
 #include "sim/io/cache_layout.h"
 #include "sim/io/file_identity.h"
@@ -60,6 +61,18 @@ void add_surface_stages(SurfacePassStats& sum, const SurfacePassStats& s) {
   sum.seconds_resolve += s.seconds_resolve, sum.seconds_readback += s.seconds_readback;
 }
 
+// With render.exr off, no EXR of an earlier run may sit beside the PNGs as if it were current.
+int remove_exr_frames(const std::string& exr_pattern) {
+  int removed = 0;
+  if (!std::filesystem::is_directory(std::filesystem::path(exr_pattern).parent_path())) return 0;
+  for (int f : find_pattern_frames(exr_pattern)) {
+    std::error_code ec;
+    if (std::filesystem::remove(expand_frame_pattern(exr_pattern, f), ec)) ++removed;
+    if (ec) fail(expand_frame_pattern(exr_pattern, f), ": cannot remove this EXR frame of an earlier run: ", ec.message());
+  }
+  return removed;
+}
+
 }  // namespace
 
 PreparedRender prepare_render(RenderScene& scene, RenderSettings settings) {
@@ -97,7 +110,10 @@ std::string frame_record(const PreparedRender& p, const nlohmann::json& render_k
   for (const CameraKey& k : p.settings.camera)
     cameras.push_back({k.time, k.position.x(), k.position.y(), k.position.z(), k.target.x(), k.target.y(),
                        k.target.z(), k.fov_y_degrees});
-  nlohmann::json record = {{"render", render_keys},
+  // Whether EXRs are written beside the PNGs changes neither picture.
+  nlohmann::json keys = render_keys;
+  if (keys.is_object()) keys.erase("exr");
+  nlohmann::json record = {{"render", keys},
                            {"sequence", p.scene->sequence_digest},
                            {"camera", cameras},
                            {"ground_height", p.settings.environment.ground_height},
@@ -152,7 +168,9 @@ RenderStageSummary run_render_stage(PreparedRender& prepared, const nlohmann::js
   const RenderScene& scene = *prepared.scene;
   const RenderSettings& settings = prepared.settings;
   const std::string pattern = (scene.scene_out / settings.frame_pattern).string();
+  const std::string exr_pattern = (scene.scene_out / settings.exr_pattern()).string();
   RenderStageSummary summary;
+  if (!settings.exr) summary.exr_removed = remove_exr_frames(exr_pattern);
   if (frames.empty()) return summary;
   const std::filesystem::path frames_dir = std::filesystem::path(expand_frame_pattern(pattern, 0)).parent_path();
 
@@ -168,7 +186,8 @@ RenderStageSummary run_render_stage(PreparedRender& prepared, const nlohmann::js
   auto needs_drawing = [&](size_t k) {
     if (draw[k] < 0) {
       records[k] = frame_record(prepared, render_keys, frames[k]);
-      draw[k] = options.overwrite || read_png_record(expand_frame_pattern(pattern, frames[k])) != records[k];
+      draw[k] = options.overwrite || read_png_record(expand_frame_pattern(pattern, frames[k])) != records[k] ||
+                (settings.exr && read_frame_exr_record(expand_frame_pattern(exr_pattern, frames[k])) != records[k]);
     }
     return draw[k] == 1;
   };
@@ -199,13 +218,18 @@ RenderStageSummary run_render_stage(PreparedRender& prepared, const nlohmann::js
       while (next < frames.size() && !needs_drawing(next)) ++next;
       if (next < frames.size()) loads.start(frames[next]);
       FrameReport report;
-      ImageRGB8 image = with_context(str("frame ", f), [&] {
-        return allocating("rendering", 0, [&] { return renderer.render(taken.frame.inputs(), &report); });
+      RenderedFrame image = with_context(str("frame ", f), [&] {
+        return allocating("rendering", 0, [&] { return renderer.render_frame(taken.frame.inputs(), &report); });
       });
+      // The EXR goes first, so a frame whose PNG is on disk has both.
+      std::function<void()> exr;
+      if (image.layers)
+        exr = [path = expand_frame_pattern(exr_pattern, f), layers = std::move(*image.layers),
+               provenance = FrameProvenance{scene.name, records[k]}] { write_frame_exr(path, layers, provenance); };
       finish_png();
       // The frame's time on this thread: waiting for its load, then drawing it.
       const double frame_seconds = frame_start.seconds();
-      pngs.write(path, std::move(image), records[k], [&, f, k, path, report, frame_seconds, load = taken.load_seconds](double write) {
+      pngs.write(path, std::move(image.image), records[k], std::move(exr), [&, f, k, path, report, frame_seconds, load = taken.load_seconds](double write) {
         // Every frame once it is on disk, so a run stopped midway keeps the times of what it drew.
         merge_render_stats(scene.scene_out, {{.frame = f,
                                               .triangles = report.triangles,
@@ -245,7 +269,9 @@ RenderStageSummary run_render_stage(PreparedRender& prepared, const nlohmann::js
     if (!std::filesystem::exists(path)) continue;
     const bool current =
         (!settings.draws_diffuse() || std::filesystem::exists(diffuse_cache_path(scene.scene_out, f))) &&
-        read_png_record(path) == frame_record(prepared, render_keys, f);
+        read_png_record(path) == frame_record(prepared, render_keys, f) &&
+        (!settings.exr || !std::filesystem::exists(expand_frame_pattern(exr_pattern, f)) ||
+         read_frame_exr_record(expand_frame_pattern(exr_pattern, f)) == frame_record(prepared, render_keys, f));
     summary.stale_elsewhere += !current;
   }
   const auto per_frame = [&](double seconds) {

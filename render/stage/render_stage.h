@@ -8,6 +8,10 @@
 // digest, and the identity of the diffuse cache and fluid file it was drawn from. A frame on disk is
 // skipped only when its record equals what this render would write (unless overwrite); frames outside
 // the render's selection are never touched, and the summary counts those that are stale.
+//
+// With render.exr, each frame's layers also go to an OpenEXR file beside its PNG (frame_exr.h) with the
+// same record, and a frame is current only when both are. With it off, EXR frames of earlier runs are
+// removed (all of them: none can be current), and the log says so.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -29,6 +33,7 @@ struct RenderStageOptions {
 struct RenderStageSummary {
   int written = 0, skipped = 0;
   int stale_elsewhere = 0;  // frames on disk outside the selection that do not match the scene now
+  int exr_removed = 0;      // EXR frames of an earlier run, removed because render.exr is off
   double seconds = 0.0;
   std::vector<std::string> stages;  // what ran, e.g. "surface reconstruction", "OSMesa surface pass"
   std::filesystem::path first_frame;  // the first frame written or found

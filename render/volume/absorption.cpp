@@ -9,16 +9,21 @@
 namespace spume {
 namespace {
 
-// Colour from per-type lengths and their dimmed counterparts.
-Vec3d mix_color(const VolumeShading& shading, const std::array<double, kDiffuseTypeCount>& length,
-                const std::array<Vec3d, kDiffuseTypeCount>& weight) {
+// Colour from per-type lengths and their dimmed counterparts, and each type's part of it.
+void mix_color(const VolumeShading& shading, const std::array<double, kDiffuseTypeCount>& length,
+               const std::array<Vec3d, kDiffuseTypeCount>& weight, RaySample& out) {
   double total = 0.0;
   Vec3d c = Vec3d::Zero();
   for (int k = 0; k < kDiffuseTypeCount; ++k) {
     total += length[size_t(k)];
     c += shading.color[size_t(k)].cwiseProduct(weight[size_t(k)]);
   }
-  return total > 0.0 ? Vec3d(c / total) : Vec3d::Zero();
+  if (!(total > 0.0)) return;
+  out.color = c / total;
+  for (size_t k = 0; k < size_t(kDiffuseTypeCount); ++k) {
+    out.share[k] = length[k] / total;
+    out.type_color[k] = shading.color[k].cwiseProduct(weight[k]) / total;
+  }
 }
 
 }  // namespace
@@ -110,7 +115,7 @@ RaySample absorb_intervals(const Interval* iv, size_t n, const VolumeShading& sh
       if (seen & (1u << k)) per_type(size_t(k), k);
   }
   out.transmittance = std::exp(-shading.alpha * union_length);
-  out.color = mix_color(shading, length, weight);
+  mix_color(shading, length, weight, out);
   return out;
 }
 
@@ -134,7 +139,7 @@ RaySample MarchAccumulator::finish() const {
   // prod_i exp(-delta_i alpha dx) = exp(-alpha dx * #{i : delta_i = 1}): the same product, without
   // rounding a long chain of factors.
   out.transmittance = std::exp(-shading_.alpha * dx_ * double(covered_));
-  out.color = mix_color(shading_, length_, weight_);
+  mix_color(shading_, length_, weight_, out);
   return out;
 }
 
@@ -146,6 +151,15 @@ void PixelAverage::finish(float& transmittance, Vec3f& color) const {
   const double l = l_sum_ / n_, opacity = 1.0 - l;
   transmittance = float(l);
   color = opacity > 0.0 ? Vec3f((premultiplied_ / (n_ * opacity)).cast<float>()) : Vec3f::Zero();
+}
+
+void PixelAverage::finish_type(size_t k, Vec3f& premultiplied, float& opacity) const {
+  if (n_ == 0 || !by_type_) {
+    premultiplied = Vec3f::Zero(), opacity = 0.0f;
+    return;
+  }
+  premultiplied = (type_premultiplied_[k] / n_).cast<float>();
+  opacity = float(type_opacity_[k] / n_);
 }
 
 }  // namespace spume

@@ -25,6 +25,11 @@ struct VolumeShading {
 struct RaySample {
   double transmittance = 1.0;
   Vec3d color = Vec3d::Zero();
+  // Each type's part of it, for the per-type layers: share[k] = tau_k / sum_j tau_j (the share of
+  // the opacity 1 - L it owns; they sum to 1 where anything is seen) and type_color[k] its term of
+  // `color` (they sum to it, to rounding).
+  std::array<double, kDiffuseTypeCount> share{};
+  std::array<Vec3d, kDiffuseTypeCount> type_color{Vec3d::Zero(), Vec3d::Zero(), Vec3d::Zero()};
 };
 
 // The water stretches of one ray (empty when it never enters water).
@@ -66,18 +71,32 @@ class MarchAccumulator {
 
 // Averages the samples of one pixel so that compositing the average over a constant background
 // equals averaging the composited samples: L = mean L_s, C_d = mean((1 - L_s) C_s) / (1 - L).
+// Per type, when asked: opacity_k = mean((1 - L_s) share_k), premultiplied_k = mean((1 - L_s)
+// type_color_k), which sum over k to 1 - L and (1 - L) C_d.
 class PixelAverage {
  public:
+  explicit PixelAverage(bool by_type = false) : by_type_(by_type) {}
   void add(const RaySample& s) {
+    const double opacity = 1.0 - s.transmittance;
     l_sum_ += s.transmittance;
-    premultiplied_ += (1.0 - s.transmittance) * s.color;
+    premultiplied_ += opacity * s.color;
+    if (by_type_)
+      for (size_t k = 0; k < size_t(kDiffuseTypeCount); ++k) {
+        type_opacity_[k] += opacity * s.share[k];
+        type_premultiplied_[k] += opacity * s.type_color[k];
+      }
     ++n_;
   }
   void finish(float& transmittance, Vec3f& color) const;
+  // Type k's premultiplied colour and opacity (0 without samples or by_type).
+  void finish_type(size_t k, Vec3f& premultiplied, float& opacity) const;
 
  private:
+  bool by_type_;
   double l_sum_ = 0.0;
   Vec3d premultiplied_ = Vec3d::Zero();
+  std::array<double, kDiffuseTypeCount> type_opacity_{};
+  std::array<Vec3d, kDiffuseTypeCount> type_premultiplied_{Vec3d::Zero(), Vec3d::Zero(), Vec3d::Zero()};
   int n_ = 0;
 };
 

@@ -141,6 +141,11 @@ VolumeImage render_volume(DiffuseView frame, const Camera& camera, const VolumeS
   img.width = camera.width, img.height = camera.height;
   img.transmittance.assign(img.pixel_count(), 1.0f);
   img.color.assign(img.pixel_count(), Vec3f::Zero());
+  if (settings.split_types)
+    for (size_t k = 0; k < size_t(kDiffuseTypeCount); ++k) {
+      img.type_premultiplied[k].assign(img.pixel_count(), Vec3f::Zero());
+      img.type_opacity[k].assign(img.pixel_count(), 0.0f);
+    }
 
   std::array<float, kDiffuseTypeCount> radius{};
   for (int k = 0; k < kDiffuseTypeCount; ++k) radius[size_t(k)] = settings.look[size_t(k)].radius;
@@ -222,10 +227,13 @@ VolumeImage render_volume(DiffuseView frame, const Camera& camera, const VolumeS
           found += n;
           for (int ly = 0; ly < h; ++ly)
             for (int lx = 0; lx < w; ++lx) {
-              PixelAverage avg;
+              PixelAverage avg(settings.split_types);
               for (int k = 0; k < spp; ++k) avg.add(samples[(size_t(ly) * size_t(w) + size_t(lx)) * size_t(spp) + size_t(k)]);
               const size_t p = size_t(y0 + ly) * size_t(camera.width) + size_t(x0 + lx);
               avg.finish(img.transmittance[p], img.color[p]);
+              if (settings.split_types)
+                for (size_t k = 0; k < size_t(kDiffuseTypeCount); ++k)
+                  avg.finish_type(k, img.type_premultiplied[k][p], img.type_opacity[k][p]);
             }
         }
     }

@@ -46,6 +46,7 @@ struct VolumeSettings {
   float march_step = float(keys::render::march_step.value[0]);  // m; Eq. 9's Delta x. <= 0: half the smallest r_d
   int samples_per_pixel = int(keys::render::spp.value[0]);  // 1 = pixel centre; more = jittered, averaged
   uint64_t seed = uint64_t(keys::render::seed.value[0]);  // jitter key, with the frame, pixel and sample
+  bool split_types = false;  // also each type's part of the image (VolumeImage::type_*), for EXR layers
 
   bool drawn(DiffuseType t) const { return look[size_t(t)].radius > 0.0f; }
 };
@@ -64,6 +65,10 @@ struct VolumeImage {
   int width = 0, height = 0;
   std::vector<float> transmittance;  // L in [0, 1]; 1 where nothing diffuse is seen
   std::vector<Vec3f> color;          // C_d, linear; 0 where L == 1
+  // With VolumeSettings::split_types (else empty), per type: its premultiplied colour and opacity,
+  // which sum over the types to (1 - L) C_d and 1 - L (absorption.h's PixelAverage).
+  std::array<std::vector<Vec3f>, kDiffuseTypeCount> type_premultiplied;
+  std::array<std::vector<float>, kDiffuseTypeCount> type_opacity;
 
   size_t pixel_count() const { return size_t(width) * size_t(height); }
 };

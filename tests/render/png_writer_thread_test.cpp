@@ -32,7 +32,7 @@ TEST_P(PngWriterThreadTest, FilesAreOnDiskInOrderWhenTheirDoneRuns) {
   std::vector<int> done_order;
   for (int k = 0; k < 4; ++k) {
     const fs::path path = dir.path / "frames" / ("f" + std::to_string(k) + ".png");
-    pngs.write(path, gradient(k), "record " + std::to_string(k), [&, k, path](double seconds) {
+    pngs.write(path, gradient(k), "record " + std::to_string(k), {}, [&, k, path](double seconds) {
       done_order.push_back(k);
       EXPECT_GT(seconds, 0.0);
       // On disk, whole: the pixels and the record as given.
@@ -56,8 +56,8 @@ TEST_P(PngWriterThreadTest, AFailedWriteStopsTheNextAndNamesItsFile) {
   std::string error;
   // Written in the background, the error comes with the next write; in the foreground, at once.
   error = testing::error_of([&] {
-    pngs.write(bad, gradient(0), "", [&](double) { ++done; });
-    pngs.write(next, gradient(1), "", [&](double) { ++done; });
+    pngs.write(bad, gradient(0), "", {}, [&](double) { ++done; });
+    pngs.write(next, gradient(1), "", {}, [&](double) { ++done; });
     pngs.finish();
   });
   EXPECT_NE(error.find(bad.string()), std::string::npos) << error;

@@ -1,0 +1,140 @@
+// EXR frames (`render --exr`, frame/frame_exr.h) through the binary, read by OpenImageIO's tools as a
+// compositor's pipeline would: the layers it lists, put back together with oiiotool in the order the
+// header gives, rebuild beauty; the header carries the PNG's record; turning the export off removes
+// the files of an earlier run and leaves the PNGs alone.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include "render/image/exr_io.h"
+#include "render/image/png_io.h"
+#include "sim/io/bgeo.h"
+#include "tests/support/run_command.h"
+#include "tests/support/run_spume.h"
+#include "tests/support/temp_dir.h"
+#include "tests/support/test_fluids.h"
+
+namespace spume {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::CommandResult;
+using testing::run_spume;
+
+// Eight BGEO frames of two blocks of water thrown at each other in a tank: spray, foam and bubbles.
+class ExrFrames : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    fs::create_directories(dir / "cache");
+    for (int k = 1; k <= 8; ++k)
+      write_bgeo(dir / "cache" / ("fluid_" + std::to_string(k) + ".bgeo"),
+                 testing::blocks_closing_in(k, 0.16f, 0.5f, Vec3f(2.0f, 1, 0)));
+    std::ofstream(dir / "scene.json") << R"({
+      "name": "blocks",
+      "fluid": {"files": "cache/fluid_%d.bgeo", "radius": 0.02},
+      "solids": [{"type": "tank", "min": [-0.1, -0.02, -0.1], "max": [0.6, 0.6, 0.3]}],
+      "diffuse": {"k_ta": 2000, "k_wc": 2000},
+      "render": {"resolution": [120, 80], "alpha": 400}
+    })";
+  }
+  std::string args(const std::string& more = "", const std::string& out_dir = "out") const {
+    return (dir / "scene.json").string() + " --out " + (dir / out_dir).string() + " " + more;
+  }
+  fs::path frame(int k, const char* ext, const std::string& out_dir = "out") const {
+    char name[32];
+    std::snprintf(name, sizeof name, "frames/%04d%s", k, ext);
+    return dir / out_dir / "blocks" / name;
+  }
+
+  const testing::TempDir temp{"exr_frames"};
+  const fs::path& dir = temp.path;
+};
+
+TEST_F(ExrFrames, OiiotoolListsTheLayersAndRebuildsBeautyFromThemInTheHeadersOrder) {
+  ASSERT_EQ(run_spume("run " + args("--quiet --exr --frames 6-8")).status, 0);
+  const fs::path exr = frame(8, ".exr");
+  const CommandResult info = testing::run_command("iinfo -v " + exr.string() + " 2>&1");
+  ASSERT_EQ(info.status, 0) << info.output;
+  for (const char* channel : {"R (half)", "A (half)", "Z (float)", "sky.R (half)", "opaque.A (half)", "water.G (half)",
+                              "spray.A (half)", "foam.R (half)", "bubble.B (half)"})
+    EXPECT_NE(info.output.find(channel), std::string::npos) << channel << " missing from:\n" << info.output;
+  EXPECT_NE(info.output.find("(spray + foam + bubble) over water over opaque over sky"), std::string::npos) << info.output;
+
+  // The record beside the pixels is the PNG's: both were drawn from the same keys and caches.
+  const std::optional<std::string> png_record = read_png_record(frame(8, ".png"));
+  ASSERT_TRUE(png_record);
+  const ExrContents frame8 = read_exr(exr);
+  EXPECT_EQ(frame8.strings.at("spume/record"), *png_record);
+  EXPECT_EQ(frame8.strings.at("spume/scene"), "blocks");
+
+  // oiiotool: the diffuse layers added, then over water, over opaque, over sky.
+  auto layer = [&](const char* l) {
+    return exr.string() + " --ch R=" + l + ".R,G=" + l + ".G,B=" + l + ".B,A=" + l + ".A ";
+  };
+  const fs::path rebuilt = dir / "rebuilt.exr";
+  const CommandResult comp = testing::run_command(
+      "oiiotool " + layer("spray") + layer("foam") + "--add " + layer("bubble") + "--add " + layer("water") +
+      layer("opaque") + layer("sky") + "--over --over --over -d float -o " + rebuilt.string() + " 2>&1");
+  ASSERT_EQ(comp.status, 0) << comp.output;
+  const ExrContents r = read_exr(rebuilt);
+  ASSERT_EQ(r.width, 120);
+  // Each term is rounded to half (2^-11 of its size) and all terms are >= 0: the sum is within a few
+  // of those roundings of the value. Tolerance: 0.2% of the value, at least 1e-4.
+  double worst = 0.0;
+  size_t diffuse_pixels = 0;
+  for (const char* c : {"R", "G", "B", "A"}) {
+    const std::vector<float>&got = r.channels.at(c), &want = frame8.channels.at(c);
+    for (size_t p = 0; p < got.size(); ++p)
+      worst = std::max(worst, std::abs(double(got[p]) - want[p]) / std::max(double(std::abs(want[p])), 0.05));
+  }
+  for (size_t p = 0; p < size_t(120 * 80); ++p)
+    diffuse_pixels += frame8.channels.at("spray.A")[p] + frame8.channels.at("foam.A")[p] +
+                          frame8.channels.at("bubble.A")[p] > 0.05f;
+  EXPECT_LT(worst, 2e-3) << "largest error relative to the value";
+  EXPECT_GT(diffuse_pixels, 50u) << "the frame should show diffuse material";
+  // Beauty is opaque; Z is finite and within the scene where anything was drawn.
+  for (size_t p = 0; p < size_t(120 * 80); ++p) ASSERT_EQ(frame8.channels.at("A")[p], 1.0f);
+  const auto [z_min, z_max] = std::minmax_element(frame8.channels.at("Z").begin(), frame8.channels.at("Z").end());
+  EXPECT_GT(*z_min, 0.1f);
+  EXPECT_LE(*z_max, 1e10f);
+}
+
+TEST_F(ExrFrames, OffRemovesAnEarlierRunsFilesAndLeavesThePngsCurrent) {
+  ASSERT_EQ(run_spume("run " + args("--quiet --exr --frames 7-8")).status, 0);
+  ASSERT_TRUE(fs::exists(frame(7, ".exr")) && fs::exists(frame(8, ".exr")));
+  const auto png_time = fs::last_write_time(frame(8, ".png"));
+
+  CommandResult r = run_spume("render " + args("--frames 7-8"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("removed 2 EXR frames of an earlier run (render.exr is off)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("0 frames written, 2 current"), std::string::npos) << "the export is not part of the picture";
+  EXPECT_FALSE(fs::exists(frame(7, ".exr")) || fs::exists(frame(8, ".exr")));
+  EXPECT_EQ(fs::last_write_time(frame(8, ".png")), png_time);
+
+  // Back on: a frame whose EXR is missing is drawn again; then both are current.
+  r = run_spume("render " + args("--exr --frames 7-8"));
+  EXPECT_NE(r.output.find("2 frames written"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(frame(8, ".exr")));
+  r = run_spume("render " + args("--exr --frames 7-8"));
+  EXPECT_NE(r.output.find("0 frames written, 2 current"), std::string::npos) << r.output;
+
+  // Other keys: the EXR follows them, as the PNG does.
+  const std::string before = *read_exr_string(frame(8, ".exr"), "spume/record");
+  r = run_spume("render " + args("--exr --frames 8 --set render.alpha=200"));
+  EXPECT_NE(r.output.find("1 frames written"), std::string::npos) << r.output;
+  EXPECT_NE(*read_exr_string(frame(8, ".exr"), "spume/record"), before);
+  EXPECT_EQ(*read_exr_string(frame(8, ".exr"), "spume/record"), *read_png_record(frame(8, ".png")));
+}
+
+TEST_F(ExrFrames, ThePixelsDoNotDependOnTheThreadCount) {
+  ASSERT_EQ(run_spume("run " + args("--quiet --exr --frames 8 --threads 1", "one")).status, 0);
+  ASSERT_EQ(run_spume("run " + args("--quiet --exr --frames 8 --threads 2", "two")).status, 0);
+  const ExrContents one = read_exr(frame(8, ".exr", "one")), two = read_exr(frame(8, ".exr", "two"));
+  ASSERT_EQ(one.channels.size(), 29u);
+  for (const auto& [name, values] : one.channels) EXPECT_EQ(values, two.channels.at(name)) << name;
+}
+
+}  // namespace
+}  // namespace spume
