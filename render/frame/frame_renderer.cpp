@@ -69,7 +69,8 @@ RenderedFrame FrameRenderer::render_frame(const FrameInputs& in, FrameReport* re
   VolumeStats volume_stats;
   auto volume_pass = [&] {
     const Stopwatch watch;
-    VolumeImage volume = render_volume(*in.diffuse, camera, settings_.volume, surfaces, &volume_stats);
+    VolumeImage volume =
+        render_volume(*in.diffuse, camera, settings_.volume, surfaces, &volume_stats, in.diffuse_velocities);
     r.volume_seconds = watch.seconds();
     return volume;
   };

@@ -34,6 +34,7 @@ struct FrameInputs {
   double time = 0.0;                  // s: picks the camera key
   std::span<const Vec3f> fluid;       // fluid particle positions; empty: no surface
   const DiffusePoints* diffuse = nullptr;  // positions and types: all the volume pass reads
+  std::span<const Vec3f> diffuse_velocities;  // m/s, for motion blur (RenderSettings::volume.blurs())
   std::vector<SolidMesh> solids;
 };
 

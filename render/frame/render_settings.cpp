@@ -99,6 +99,10 @@ RenderSettings read_render_settings(const ParamReader& render, float particle_ra
   v.integrator = render.choice(k::integrator) == "exact" ? VolumeIntegrator::Exact : VolumeIntegrator::March;
   v.march_step = float(render.number(k::march_step));
   v.alpha = float(render.number(k::alpha));
+  v.shutter = float(render.number(k::shutter));
+  if (v.shutter > 0.0f && v.integrator == VolumeIntegrator::March)
+    render.fail_at("shutter", str(v.shutter, ": motion blur integrates each particle along its path exactly and needs "
+                                  "render.integrator \"exact\"; set render.shutter to 0 to march Eq. 9 as written"));
   for (int t = 0; t < kDiffuseTypeCount; ++t) {
     const ParamReader look = look_reader(render, kLookKeys[t].radius);
     v.look[size_t(t)].radius = float(look.number(kLookKeys[t].radius, particle_radius));

@@ -111,6 +111,10 @@ inline constexpr KeySpec sun_direction{.path = "render.sun_direction", .type = V
                                        .doc = "direction towards the sun (normalised)"};
 inline constexpr KeySpec frames{.path = "render.frames", .type = Text, .choices = "frames/%04d.png",
                                 .doc = "output pattern under OUT/<scene>/ (%04d, %d or ####), ending in .png"};
+inline constexpr KeySpec shutter{.path = "render.shutter", .unit = "frames", .value = {0}, .lo = 0, .hi = 1,
+                                 .lo_bound = Closed, .hi_bound = Closed,
+                                 .doc = "motion blur of the diffuse material: the shutter's open time, centred on the "
+                                        "frame (0.5: a 180-degree shutter; 0: still)"};
 inline constexpr KeySpec exr{.path = "render.exr", .type = Boolean, .value = {0},
                              .doc = "also write each frame as multilayer OpenEXR beside its PNG (.exr): half-float "
                                     "linear beauty, Z, and a layer per element (README: EXR frames)"};
@@ -120,6 +124,6 @@ inline constexpr auto all = std::to_array<const KeySpec*>(
      &key_position, &key_target, &key_fov, &surface, &surface_cell, &surface_smoothing, &solids, &supersample,
      &integrator, &march_step, &alpha, &spray_radius, &spray_color, &foam_radius, &foam_color, &bubble_radius,
      &bubble_color, &water_absorption, &water_ior, &water_roughness, &water_deep_color, &water_refraction,
-     &water_scene_reflections, &ground, &ground_height, &sun_direction, &frames, &exr});
+     &water_scene_reflections, &ground, &ground_height, &sun_direction, &frames, &shutter, &exr});
 
 }  // namespace spume::keys::render

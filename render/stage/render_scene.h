@@ -20,6 +20,7 @@ struct RenderScene {
   std::filesystem::path scene_out;     // OUT/<scene>
   double fps = 0.0;                    // set by the builder from the scene
   Vec3f up = Vec3f::UnitY();           // opposite gravity
+  Vec3f gravity = Vec3f(0.0f, -9.81f, 0.0f);  // m/s^2: spray's paths in the motion blur
   std::unique_ptr<FluidSource> fluid;  // the fluid frames (the solver's caches or the user's files)
   std::string fluid_pattern;           // their file pattern, for frame records
   std::vector<int> frames;             // the frames there are, sorted

@@ -85,6 +85,8 @@ PreparedRender prepare_render(RenderScene& scene, RenderSettings settings) {
     settings.camera.push_back(
         auto_camera(scene_bounds(scene), scene.up, 40.0f, float(settings.width) / float(settings.height)));
   settings.camera_up = scene.up;
+  settings.volume.frame_seconds = 1.0 / scene.fps;  // the shutter's unit
+  settings.volume.gravity = scene.gravity;
   settings.environment.ground_height = settings.ground_height.value_or(lowest_point(scene, 1));
   p.settings = std::move(settings);
   return p;
@@ -134,6 +136,7 @@ FrameInputs LoadedFrame::inputs() const {
   in.time = time;
   in.fluid = fluid.positions;
   in.diffuse = has_diffuse ? &diffuse : nullptr;
+  in.diffuse_velocities = diffuse_velocities;
   in.solids = solids;
   return in;
 }
@@ -149,7 +152,14 @@ LoadedFrame load_frame(PreparedRender& p, int f) {
         const auto cache = diffuse_cache_path(p.scene->scene_out, f);
         if (!std::filesystem::is_regular_file(cache))
           fail(cache.string(), ": no diffuse cache for this frame; run `spume simulate` (or `spume run`) first");
-        frame.diffuse = read_diffuse_points(cache);
+        if (p.settings.volume.blurs()) {  // the velocities too: the whole cache
+          DiffuseFrame full = read_diffuse_cache(cache);
+          frame.diffuse.index = full.index, frame.diffuse.time = full.time;
+          frame.diffuse.positions = std::move(full.positions), frame.diffuse.types = std::move(full.types);
+          frame.diffuse_velocities = std::move(full.velocities);
+        } else {
+          frame.diffuse = read_diffuse_points(cache);
+        }
         frame.has_diffuse = true;
       }
       if (p.settings.draw_solids) {
@@ -289,8 +299,9 @@ RenderStageSummary run_render_stage(PreparedRender& prepared, const nlohmann::js
   }
   if (!any_gl && summary.written > 0) summary.stages.push_back("CPU sky and ground (nothing showed a surface)");
   if (any_volume)
-    summary.stages.push_back((settings.volume.integrator == VolumeIntegrator::Exact ? "volume pass (exact)"
-                                                                                    : "volume pass (march)") +
+    summary.stages.push_back((settings.volume.blurs() ? "volume pass (exact, motion blur)"
+                              : settings.volume.integrator == VolumeIntegrator::Exact ? "volume pass (exact)"
+                                                                                      : "volume pass (march)") +
                              per_frame(total.volume_seconds));
   summary.seconds = start.seconds();
   progress.finish(str(summary.written, " written, ", summary.skipped, " skipped -> ", frames_dir.string()));

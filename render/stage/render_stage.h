@@ -58,6 +58,7 @@ std::vector<int> frames_to_render(const RenderScene& scene, const std::optional<
 struct LoadedFrame {
   FluidFrame fluid;
   DiffusePoints diffuse;  // positions and types only: what the renderer draws
+  std::vector<Vec3f> diffuse_velocities;  // m/s, with motion blur only
   bool has_diffuse = false;
   std::vector<SolidMesh> solids;
   int index = 0;

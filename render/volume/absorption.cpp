@@ -7,9 +7,7 @@
 #include <emmintrin.h>
 
 namespace spume {
-namespace {
 
-// Colour from per-type lengths and their dimmed counterparts, and each type's part of it.
 void mix_color(const VolumeShading& shading, const std::array<double, kDiffuseTypeCount>& length,
                const std::array<Vec3d, kDiffuseTypeCount>& weight, RaySample& out) {
   double total = 0.0;
@@ -25,8 +23,6 @@ void mix_color(const VolumeShading& shading, const std::array<double, kDiffuseTy
     out.type_color[k] = shading.color[k].cwiseProduct(weight[k]) / total;
   }
 }
-
-}  // namespace
 
 void sort_intervals(Interval* iv, size_t n) {
   for (size_t i = 1; i < n; ++i) {

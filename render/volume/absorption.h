@@ -32,6 +32,11 @@ struct RaySample {
   std::array<Vec3d, kDiffuseTypeCount> type_color{Vec3d::Zero(), Vec3d::Zero(), Vec3d::Zero()};
 };
 
+// The colour from per-type lengths inside the material and the same lengths dimmed by the water in
+// front (weight), into out.color, share and type_color.
+void mix_color(const VolumeShading& shading, const std::array<double, kDiffuseTypeCount>& length,
+               const std::array<Vec3d, kDiffuseTypeCount>& weight, RaySample& out);
+
 // The water stretches of one ray (empty when it never enters water).
 struct WaterView {
   const WaterSegment* seg = nullptr;

@@ -19,6 +19,7 @@
 #include "render/volume/embree_scene.h"
 #include "render/volume/point_grid.h"
 #include "render/volume/screen_bins.h"
+#include "render/volume/swept_trace.h"
 #include "render/surface/triangle_mesh.h"
 #include "render/volume/tile_rays.h"
 
@@ -55,6 +56,8 @@ struct Pass {
   std::array<double, kDiffuseTypeCount> r2{};
   TileRayParams ray_params;
   const ScreenBins* bins = nullptr;
+  const SweptBins* swept = nullptr;  // motion blur
+  DiffuseMotion motion;
   const SphereHitScene* hits = nullptr;
   const std::array<PointGrid, kDiffuseTypeCount>* grids = nullptr;
   double dx = 0.0;
@@ -65,6 +68,7 @@ struct Scratch {
   BinScratch bin;
   std::vector<SphereHitScene::Hit> hits;
   std::vector<Interval> intervals;
+  SweptTraceScratch swept;
 };
 
 size_t exact_embree(const Pass& pass, Scratch& s, std::vector<RaySample>& out) {
@@ -134,8 +138,13 @@ double march_step(const VolumeSettings& settings) {
 }
 
 VolumeImage render_volume(DiffuseView frame, const Camera& camera, const VolumeSettings& settings,
-                          const VolumeSurfaces& surfaces, VolumeStats* stats) {
+                          const VolumeSurfaces& surfaces, VolumeStats* stats, std::span<const Vec3f> velocities) {
   validate(frame, camera, settings);
+  if (settings.blurs() && settings.integrator != VolumeIntegrator::Exact)
+    fail("volume pass: motion blur (shutter ", settings.shutter, ") needs the exact integrator");
+  if (settings.blurs() && velocities.size() != frame.size())
+    fail("volume pass: motion blur needs a velocity per particle; frame ", frame.index, " has ", frame.size(),
+         " particles and ", velocities.size(), " velocities");
   VolumeStats st;
   VolumeImage img;
   img.width = camera.width, img.height = camera.height;
@@ -150,7 +159,7 @@ VolumeImage render_volume(DiffuseView frame, const Camera& camera, const VolumeS
   std::array<float, kDiffuseTypeCount> radius{};
   for (int k = 0; k < kDiffuseTypeCount; ++k) radius[size_t(k)] = settings.look[size_t(k)].radius;
   const Stopwatch build_start;
-  const Aabb bounds = drawn_bounds(frame, radius, st.spheres);
+  Aabb bounds = drawn_bounds(frame, radius, st.spheres);
   if (st.spheres == 0) {
     st.skipped = true;
     if (stats) *stats = st;
@@ -158,6 +167,17 @@ VolumeImage render_volume(DiffuseView frame, const Camera& camera, const VolumeS
   }
 
   Pass pass;
+  const int spp = settings.samples_per_pixel;
+  std::unique_ptr<SweptBins> swept;
+  if (settings.blurs()) {  // the rays' box must hold every path, not the spheres at the frame's time
+    const double half = 0.5 * double(settings.shutter) * settings.frame_seconds;
+    pass.motion = {velocities, -half, half, settings.gravity.cast<double>()};
+    swept = std::make_unique<SweptBins>(frame, pass.motion, radius,
+                                        SphereProjector(camera, spp == 1 ? 0.5 : 0.0, spp == 1 ? 0.5 : 1.0),
+                                        camera.width, camera.height);
+    bounds = swept->bounds();
+    pass.swept = swept.get();
+  }
   pass.frame = &frame, pass.camera = &camera, pass.settings = &settings;
   pass.shading.alpha = settings.alpha;
   pass.shading.water_sigma = settings.water_sigma.cast<double>();
@@ -165,7 +185,6 @@ VolumeImage render_volume(DiffuseView frame, const Camera& camera, const VolumeS
     pass.shading.color[k] = settings.look[k].color.cast<double>();
     pass.r2[k] = double(radius[k]) * double(radius[k]);
   }
-  const int spp = settings.samples_per_pixel;
   std::optional<SurfaceScene> surface_scene;
   if ((surfaces.water && !surfaces.water->empty()) || (surfaces.solids && !surfaces.solids->empty()))
     surface_scene.emplace(surfaces);
@@ -176,7 +195,8 @@ VolumeImage render_volume(DiffuseView frame, const Camera& camera, const VolumeS
   std::unique_ptr<ScreenBins> bins;
   std::unique_ptr<SphereHitScene> hit_scene;
   std::unique_ptr<std::array<PointGrid, kDiffuseTypeCount>> grids;
-  if (settings.integrator == VolumeIntegrator::March) {
+  if (pass.swept) {  // built above
+  } else if (settings.integrator == VolumeIntegrator::March) {
     pass.dx = march_step(settings);
     // Guard against a step that would take practically forever (e.g. a typo in the scene file).
     const double diagonal = (bounds.max - bounds.min).cast<double>().norm();
@@ -213,11 +233,16 @@ VolumeImage render_volume(DiffuseView frame, const Camera& camera, const VolumeS
           const int w = std::min(kTile, camera.width - x0), h = std::min(kTile, camera.height - y0);
           // With screen bins, only rays some sphere may touch are traced against the surfaces (at the
           // lighthouse's 15M, 30% of those that reach the diffuse bounds).
-          const uint8_t* wanted = pass.bins ? count_tile_candidates(ox, oy, w, h, spp, s.bin).data() : nullptr;
+          const uint8_t* wanted = pass.swept ? swept_candidates(*pass.swept, x0, y0, w, h, spp, s.swept).data()
+                                  : pass.bins ? count_tile_candidates(ox, oy, w, h, spp, s.bin).data()
+                                              : nullptr;
           make_tile_rays(pass.ray_params, x0, y0, w, h, s.tile, wanted);
           samples.assign(s.tile.rays.size(), RaySample{});
           size_t n = 0;
-          if (pass.grids) {
+          if (pass.swept) {
+            n = trace_swept_tile(s.tile, *pass.swept, *pass.frame, pass.motion, pass.camera->position.cast<double>(),
+                                 pass.r2, pass.shading, s.swept, samples);
+          } else if (pass.grids) {
             n = march(pass, s, samples);
           } else if (pass.bins) {
             n = trace_bin_tile(s.tile, ox, oy, pass.camera->position.cast<double>(), pass.r2, pass.shading, s.bin, samples);

@@ -13,8 +13,11 @@
 //          chord computed exactly in double and a sweep over chords sorted by entry. Candidate
 //          spheres come from screen-tile bins (screen_bins.h, default) or Embree's all-hits
 //          filter (embree_scene.h); same chords, the bins are ~10x faster at 1M-15M spheres.
-// Colours: absorption.h. Bins of 2x2 tiles of 16x16 pixels run in parallel, each pixel written by one task
+// With a shutter (motion blur) each particle's chord is averaged over its path instead, from bins of
+// the paths (swept_trace.h). Colours: absorption.h. Bins of 2x2 tiles of 16x16 pixels run in parallel, each pixel written by one task
 // and computed serially, so the image is the same bytes for any thread count.
+#include <span>
+
 #include "render/camera/camera.h"
 #include "render/volume/volume_types.h"
 
@@ -25,8 +28,11 @@ bool volume_pass_needed(DiffuseView frame, const VolumeSettings& settings);
 
 // Throws Error for a bad setting (negative radius or alpha, no samples, ...) or frame arrays of
 // different sizes. When nothing is drawn returns L = 1 everywhere without building anything.
+// With settings.blurs() and the particles' velocities (m/s, one each), each particle's absorption is
+// averaged over its path during the shutter (motion blur, swept_trace.h); the exact integrator only.
 VolumeImage render_volume(DiffuseView frame, const Camera& camera, const VolumeSettings& settings,
-                          const VolumeSurfaces& surfaces = {}, VolumeStats* stats = nullptr);
+                          const VolumeSurfaces& surfaces = {}, VolumeStats* stats = nullptr,
+                          std::span<const Vec3f> velocities = {});
 
 // The march step used for these settings (settings.march_step, or half the smallest drawn radius).
 double march_step(const VolumeSettings& settings);

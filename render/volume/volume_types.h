@@ -47,6 +47,13 @@ struct VolumeSettings {
   int samples_per_pixel = int(keys::render::spp.value[0]);  // 1 = pixel centre; more = jittered, averaged
   uint64_t seed = uint64_t(keys::render::seed.value[0]);  // jitter key, with the frame, pixel and sample
   bool split_types = false;  // also each type's part of the image (VolumeImage::type_*), for EXR layers
+  // Motion blur (swept_trace.h): the shutter in frame intervals, centred on the frame's time, and what
+  // the caller knows of the scene: the frame interval (s; 0 = no blur) and gravity (spray's paths).
+  float shutter = float(keys::render::shutter.value[0]);
+  double frame_seconds = 0.0;
+  Vec3f gravity = Vec3f(0.0f, -9.81f, 0.0f);
+
+  bool blurs() const { return shutter > 0.0f && frame_seconds > 0.0; }
 
   bool drawn(DiffuseType t) const { return look[size_t(t)].radius > 0.0f; }
 };

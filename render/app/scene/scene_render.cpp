@@ -19,6 +19,7 @@ SceneRender scene_render(const SimScene& scene, const std::filesystem::path& out
   s.scene_out = out_root / scene.name;
   s.fps = scene.fluid.fps;
   s.up = -scene.gravity.normalized();
+  s.gravity = scene.gravity;
   if (scene.source == FluidSourceKind::Solver) {
     const std::optional<StageRecord> made = read_stage_record(s.scene_out / "fluid");
     const RecordMatch match = fluid_caches_match(scene, out_root, made ? made->last_frame : 0);

@@ -1,12 +1,14 @@
-// EXR frames (`render --exr`, frame/frame_exr.h) through the binary, read by OpenImageIO's tools as a
-// compositor's pipeline would: the layers it lists, put back together with oiiotool in the order the
-// header gives, rebuild beauty; the header carries the PNG's record; turning the export off removes
-// the files of an earlier run and leaves the PNGs alone.
+// Frames for a production pipeline through the binary. EXR frames (`render --exr`, frame/frame_exr.h),
+// read by OpenImageIO's tools as a compositor's pipeline would: the layers it lists, put back together
+// with oiiotool in the order the header gives, rebuild beauty; the header carries the PNG's record;
+// turning the export off removes the files of an earlier run and leaves the PNGs alone. Motion blur
+// (render.shutter): a frame drawn again with it, the same bytes for any thread count, and lookdev.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 
 #include "render/image/exr_io.h"
 #include "render/image/png_io.h"
@@ -24,7 +26,7 @@ using testing::CommandResult;
 using testing::run_spume;
 
 // Eight BGEO frames of two blocks of water thrown at each other in a tank: spray, foam and bubbles.
-class ExrFrames : public ::testing::Test {
+class ProductionFrames : public ::testing::Test {
  protected:
   void SetUp() override {
     fs::create_directories(dir / "cache");
@@ -48,11 +50,11 @@ class ExrFrames : public ::testing::Test {
     return dir / out_dir / "blocks" / name;
   }
 
-  const testing::TempDir temp{"exr_frames"};
+  const testing::TempDir temp{"production_frames"};
   const fs::path& dir = temp.path;
 };
 
-TEST_F(ExrFrames, OiiotoolListsTheLayersAndRebuildsBeautyFromThemInTheHeadersOrder) {
+TEST_F(ProductionFrames, OiiotoolListsTheLayersAndRebuildsBeautyFromThemInTheHeadersOrder) {
   ASSERT_EQ(run_spume("run " + args("--quiet --exr --frames 6-8")).status, 0);
   const fs::path exr = frame(8, ".exr");
   const CommandResult info = testing::run_command("iinfo -v " + exr.string() + " 2>&1");
@@ -101,7 +103,7 @@ TEST_F(ExrFrames, OiiotoolListsTheLayersAndRebuildsBeautyFromThemInTheHeadersOrd
   EXPECT_LE(*z_max, 1e10f);
 }
 
-TEST_F(ExrFrames, OffRemovesAnEarlierRunsFilesAndLeavesThePngsCurrent) {
+TEST_F(ProductionFrames, OffRemovesAnEarlierRunsFilesAndLeavesThePngsCurrent) {
   ASSERT_EQ(run_spume("run " + args("--quiet --exr --frames 7-8")).status, 0);
   ASSERT_TRUE(fs::exists(frame(7, ".exr")) && fs::exists(frame(8, ".exr")));
   const auto png_time = fs::last_write_time(frame(8, ".png"));
@@ -128,12 +130,39 @@ TEST_F(ExrFrames, OffRemovesAnEarlierRunsFilesAndLeavesThePngsCurrent) {
   EXPECT_EQ(*read_exr_string(frame(8, ".exr"), "spume/record"), *read_png_record(frame(8, ".png")));
 }
 
-TEST_F(ExrFrames, ThePixelsDoNotDependOnTheThreadCount) {
+TEST_F(ProductionFrames, ThePixelsDoNotDependOnTheThreadCount) {
   ASSERT_EQ(run_spume("run " + args("--quiet --exr --frames 8 --threads 1", "one")).status, 0);
   ASSERT_EQ(run_spume("run " + args("--quiet --exr --frames 8 --threads 2", "two")).status, 0);
   const ExrContents one = read_exr(frame(8, ".exr", "one")), two = read_exr(frame(8, ".exr", "two"));
   ASSERT_EQ(one.channels.size(), 29u);
   for (const auto& [name, values] : one.channels) EXPECT_EQ(values, two.channels.at(name)) << name;
+}
+
+std::string file_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST_F(ProductionFrames, TheShutterRedrawsTheFrameTheSameForAnyThreadCountAndLookdevVariesIt) {
+  ASSERT_EQ(run_spume("run " + args("--quiet --frames 8")).status, 0);
+  const std::string still = file_bytes(frame(8, ".png"));
+  CommandResult r = run_spume("render " + args("--frames 8 --threads 1 --set render.shutter=0.5"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("1 frames written"), std::string::npos) << "the shutter is part of the picture";
+  const std::string one = file_bytes(frame(8, ".png"));
+  EXPECT_NE(one, still);
+  ASSERT_EQ(run_spume("render " + args("--quiet --frames 8 --threads 2 --overwrite --set render.shutter=0.5")).status, 0);
+  EXPECT_EQ(file_bytes(frame(8, ".png")), one) << "two threads drew other bytes than one";
+
+  const fs::path sheet = dir / "sheet.png";
+  r = run_spume("lookdev " + args("--quiet --frame 8 --vary render.shutter=0,1 --output " + sheet.string()));
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(fs::exists(sheet));
+
+  r = run_spume("render " + args("--frames 8 --set render.shutter=0.5 --set render.integrator=march"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("render.shutter"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("render.integrator \"exact\""), std::string::npos) << r.output;
 }
 
 }  // namespace
