@@ -3,6 +3,7 @@
 //   R G B A           beauty, HALF
 //   Z                 distance to the first surface, m, FLOAT
 //   <layer>.R/G/B/A   sky, opaque, water, then spray, foam, bubble for the drawn types, HALF
+//   forward.u/v, backward.u/v   motion vectors, pixels per frame, v up (Nuke's), HALF
 // and in the header, as the PNG frames carry it: `spume/record` (what the frame was drawn from,
 // render/stage/render_stage.h), `spume/keysDigest` (its digest), `spume/scene`, `spume/version`,
 // and `comments` saying how the layers rebuild beauty.

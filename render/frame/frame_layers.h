@@ -12,6 +12,7 @@
 // is Eq. 9's composite with alpha 1 - L), the rest stack with `over`. Exact in float; the EXR's half
 // floats round each term to 2^-11 of its size.
 //   distance  Z: m from the camera to the first ground, solid or water surface; kSkyDistance for sky.
+//   motion    screen-space motion vectors, pixels per frame (motion_vectors.h)
 #include <array>
 #include <string>
 #include <vector>
@@ -37,6 +38,7 @@ struct FrameLayers {
   std::vector<Rgba> beauty;
   std::vector<float> distance;
   std::vector<RgbaLayer> layers;  // in the order above
+  std::vector<Rgba> motion;       // forward u, v and backward u, v (motion_vectors.h); empty: none
 
   const RgbaLayer* layer(const std::string& name) const;
 };

@@ -8,6 +8,7 @@
 #include "sim/core/stopwatch.h"
 #include "render/surface/reconstruct.h"
 #include "render/volume/composite.h"
+#include "render/frame/motion_vectors.h"
 #include "render/volume/volume_pass.h"
 
 namespace spume {
@@ -100,6 +101,16 @@ RenderedFrame FrameRenderer::render_frame(const FrameInputs& in, FrameReport* re
     std::array<bool, kDiffuseTypeCount> drawn{};
     for (int k = 0; k < kDiffuseTypeCount; ++k) drawn[size_t(k)] = settings_.volume.drawn(DiffuseType(k));
     out.layers = frame_layers(colour, background, diffuse ? &*diffuse : nullptr, drawn, camera);
+    MotionScene motion;
+    const double dt = settings_.volume.frame_seconds > 0.0 ? settings_.volume.frame_seconds : 1.0 / 25.0;
+    motion.previous = camera_at_time(in.time - dt), motion.now = camera, motion.next = camera_at_time(in.time + dt);
+    motion.frame_seconds = dt;
+    motion.fluid_positions = in.fluid, motion.fluid_velocities = in.fluid_velocities;
+    motion.fluid_support = settings_.surface.support_factor * settings_.surface.particle_radius;
+    motion.solids = in.solid_set;
+    motion.diffuse = in.diffuse, motion.diffuse_velocities = in.diffuse_velocities;
+    for (int k = 0; k < kDiffuseTypeCount; ++k) motion.radius[size_t(k)] = settings_.volume.look[size_t(k)].radius;
+    out.layers->motion = motion_vectors(motion, background, diffuse ? &*diffuse : nullptr);
     r.layers_seconds = t0.seconds();
   }
   out.image = to_srgb8(colour);

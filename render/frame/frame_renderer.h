@@ -15,6 +15,7 @@
 #include "render/image/image.h"
 #include "render/frame/render_settings.h"
 #include "render/surface/triangle_mesh.h"
+#include "sim/geometry/solids.h"
 
 namespace spume {
 
@@ -34,7 +35,9 @@ struct FrameInputs {
   double time = 0.0;                  // s: picks the camera key
   std::span<const Vec3f> fluid;       // fluid particle positions; empty: no surface
   const DiffusePoints* diffuse = nullptr;  // positions and types: all the volume pass reads
-  std::span<const Vec3f> diffuse_velocities;  // m/s, for motion blur (RenderSettings::volume.blurs())
+  std::span<const Vec3f> diffuse_velocities;  // m/s, for motion blur and motion vectors
+  std::span<const Vec3f> fluid_velocities;    // m/s, for motion vectors; may be empty
+  const SolidSet* solid_set = nullptr;         // the solids at `time` with their velocities; may be null
   std::vector<SolidMesh> solids;
 };
 

@@ -137,6 +137,8 @@ FrameInputs LoadedFrame::inputs() const {
   in.fluid = fluid.positions;
   in.diffuse = has_diffuse ? &diffuse : nullptr;
   in.diffuse_velocities = diffuse_velocities;
+  in.fluid_velocities = fluid.velocities;
+  in.solid_set = &solid_set;
   in.solids = solids;
   return in;
 }
@@ -152,7 +154,7 @@ LoadedFrame load_frame(PreparedRender& p, int f) {
         const auto cache = diffuse_cache_path(p.scene->scene_out, f);
         if (!std::filesystem::is_regular_file(cache))
           fail(cache.string(), ": no diffuse cache for this frame; run `spume simulate` (or `spume run`) first");
-        if (p.settings.volume.blurs()) {  // the velocities too: the whole cache
+        if (p.settings.volume.blurs() || p.settings.exr) {  // the velocities too (blur, motion vectors)
           DiffuseFrame full = read_diffuse_cache(cache);
           frame.diffuse.index = full.index, frame.diffuse.time = full.time;
           frame.diffuse.positions = std::move(full.positions), frame.diffuse.types = std::move(full.types);
@@ -164,8 +166,8 @@ LoadedFrame load_frame(PreparedRender& p, int f) {
       }
       if (p.settings.draw_solids) {
         Camera camera = camera_at(p.settings.camera, frame.time, p.settings.width, p.settings.height);
-        frame.solids = solid_meshes(solids_at_time(p.scene->solids, p.scene->bodies, frame.time), camera.position,
-                                    p.settings.environment.sun_direction);
+        frame.solid_set = solids_at_time(p.scene->solids, p.scene->bodies, frame.time);
+        frame.solids = solid_meshes(frame.solid_set, camera.position, p.settings.environment.sun_direction);
       }
       return frame;
     });

@@ -61,6 +61,7 @@ struct LoadedFrame {
   std::vector<Vec3f> diffuse_velocities;  // m/s, with motion blur only
   bool has_diffuse = false;
   std::vector<SolidMesh> solids;
+  SolidSet solid_set;  // the solids at the frame's time, with their velocities (motion vectors)
   int index = 0;
   double time = 0.0;
   FrameInputs inputs() const;  // views into this object

@@ -1,0 +1,202 @@
+#include "render/frame/motion_vectors.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "render/volume/swept_trace.h"
+#include "sim/core/parallel.h"
+
+namespace spume {
+namespace {
+
+using Vec2d = Eigen::Vector2d;
+
+// Pixel coordinates (x right, y down, as the image's rows) of world point p through `cam`; false
+// behind the camera.
+bool project(const Camera& cam, const Vec3f& p, Vec2d& out) {
+  Vec3f right, up, back;
+  cam.basis(right, up, back);
+  const Vec3d v = (p - cam.position).cast<double>();
+  const double z = -v.dot(back.cast<double>());
+  if (!(z > 1e-9)) return false;
+  const double tan_y = std::tan(0.5 * double(cam.fov_y_degrees) * std::numbers::pi / 180.0);
+  const double tan_x = tan_y * double(cam.width) / double(cam.height);
+  const double sx = v.dot(right.cast<double>()) / z, sy = v.dot(up.cast<double>()) / z;
+  out = Vec2d((sx / tan_x + 1.0) * 0.5 * cam.width, (1.0 - sy / tan_y) * 0.5 * cam.height);
+  return true;
+}
+
+// {forward u, forward v, backward u, backward v} of a point at p moving at u (m/s); v is up.
+Rgba screen_motion(const MotionScene& m, const Vec3f& p, const Vec3f& u) {
+  Vec2d now, next, prev;
+  const float dt = float(m.frame_seconds);
+  if (!project(m.now, p, now) || !project(m.next, p + dt * u, next) || !project(m.previous, p - dt * u, prev))
+    return {0, 0, 0, 0};
+  return {float(next.x() - now.x()), float(now.y() - next.y()), float(prev.x() - now.x()), float(now.y() - prev.y())};
+}
+
+// The fluid's velocity near a point: particles binned in cells of the kernel support.
+class FluidVelocity {
+ public:
+  FluidVelocity(std::span<const Vec3f> x, std::span<const Vec3f> v, float h) : x_(x), v_(v), h_(h) {
+    if (v.empty() || x.size() != v.size() || !(h > 0.0f)) return;
+    Aabb box;
+    for (const Vec3f& p : x) box.extend(p);
+    lo_ = box.min;
+    for (int a = 0; a < 3; ++a) n_[a] = std::max(1, int(std::ceil((box.max[a] - box.min[a]) / h)) + 1);
+    if (double(n_[0]) * n_[1] * n_[2] > 6.4e7) return;  // a scattered cache: too many cells, leave the water still
+    start_.assign(size_t(n_[0]) * n_[1] * n_[2] + 1, 0);
+    for (const Vec3f& p : x) ++start_[cell(p) + 1];
+    for (size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+    index_.resize(x.size());
+    std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
+    for (size_t i = 0; i < x.size(); ++i) index_[fill[cell(x[i])]++] = uint32_t(i);
+  }
+
+  Vec3f at(const Vec3f& p) const {
+    if (start_.empty()) return Vec3f::Zero();
+    int c[3];
+    for (int a = 0; a < 3; ++a) c[a] = int(std::floor((p[a] - lo_[a]) / h_));
+    const float h2 = h_ * h_;
+    double wsum = 0.0;
+    Vec3d vsum = Vec3d::Zero();
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int i = c[0] + dx, j = c[1] + dy, k = c[2] + dz;
+          if (i < 0 || j < 0 || k < 0 || i >= n_[0] || j >= n_[1] || k >= n_[2]) continue;
+          const size_t cell = (size_t(k) * n_[1] + size_t(j)) * n_[0] + size_t(i);
+          for (uint32_t q = start_[cell]; q < start_[cell + 1]; ++q) {
+            const float d2 = (x_[index_[q]] - p).squaredNorm();
+            if (d2 >= h2) continue;
+            const double w = std::pow(1.0 - double(d2 / h2), 3);
+            wsum += w, vsum += w * v_[index_[q]].cast<double>();
+          }
+        }
+    return wsum > 0.0 ? Vec3f((vsum / wsum).cast<float>()) : Vec3f::Zero();
+  }
+
+ private:
+  size_t cell(const Vec3f& p) const {
+    size_t c[3];
+    for (int a = 0; a < 3; ++a) c[a] = size_t(std::clamp(int((p[a] - lo_[a]) / h_), 0, n_[a] - 1));
+    return (c[2] * size_t(n_[1]) + c[1]) * size_t(n_[0]) + c[0];
+  }
+
+  std::span<const Vec3f> x_, v_;
+  float h_;
+  Vec3f lo_ = Vec3f::Zero();
+  int n_[3] = {0, 0, 0};
+  std::vector<uint32_t> start_, index_;
+};
+
+// Distance from p to a solid's surface (a tank's: its walls and floor).
+float surface_distance(const Solid& s, const Vec3f& p) {
+  if (s.kind == Solid::Kind::Sphere) return std::abs((p - s.center).norm() - s.radius);
+  const Vec3f c = s.centre(), half = 0.5f * (s.max - s.min);
+  const Vec3f q = (s.orientation.conjugate() * (p - c)).cwiseAbs();
+  if (s.kind == Solid::Kind::Box) {
+    const Vec3f out = (q - half).cwiseMax(0.0f);
+    return out.squaredNorm() > 0.0f ? out.norm() : (half - q).minCoeff();
+  }
+  float d = std::numeric_limits<float>::infinity();  // tank: the nearest wall's plane
+  for (int a = 0; a < 3; ++a) {
+    const float lo = p[a] - s.min[a], hi = s.max[a] - p[a];
+    d = std::min(d, std::abs(lo));
+    if (!(s.open_top && a == s.up_axis)) d = std::min(d, std::abs(hi));
+  }
+  return d;
+}
+
+Vec3f solid_velocity(const SolidSet* solids, const Vec3f& p, float reach) {
+  if (!solids) return Vec3f::Zero();
+  const Solid* nearest = nullptr;
+  float best = reach;
+  for (const Solid& s : solids->solids()) {
+    const float d = surface_distance(s, p);
+    if (d <= best) best = d, nearest = &s;
+  }
+  return nearest ? nearest->velocity_at(p) : Vec3f::Zero();
+}
+
+}  // namespace
+
+std::vector<Rgba> motion_vectors(const MotionScene& m, const SurfaceImage& surface, const VolumeImage* volume) {
+  const Camera& cam = m.now;
+  const int w = cam.width, h = cam.height;
+  std::vector<Rgba> out(size_t(w) * size_t(h), Rgba{0, 0, 0, 0});
+  const FluidVelocity fluid(m.fluid_positions, m.fluid_velocities, m.fluid_support);
+  Vec3f right, up, back;
+  cam.basis(right, up, back);
+  const float tan_y = std::tan(0.5f * cam.fov_y_degrees * std::numbers::pi_v<float> / 180.0f);
+  const float tan_x = tan_y * float(w) / float(h);
+  parallel_for(size_t(h), 8, [&](size_t y0, size_t y1) {
+    for (size_t y = y0; y < y1; ++y)
+      for (int x = 0; x < w; ++x) {
+        const size_t p = y * size_t(w) + size_t(x);
+        const float sx = (2.0f * (float(x) + 0.5f) / float(w) - 1.0f) * tan_x;
+        const float sy = (1.0f - 2.0f * (float(y) + 0.5f) / float(h)) * tan_y;
+        const Vec3f dir = sx * right + sy * up - back;  // forward component 1: planar depth scales it
+        const float depth = surface.depth[p];
+        if (!std::isfinite(depth)) {  // sky: a point far away, moved by the camera only
+          out[p] = screen_motion(m, cam.position + 1e6f * dir, Vec3f::Zero());
+          continue;
+        }
+        const Vec3f point = cam.position + depth * dir;
+        const bool water = depth < surface.opaque_depth[p];
+        const Vec3f u = water ? fluid.at(point) : solid_velocity(m.solids, point, 1e-3f * depth + 1e-4f);
+        out[p] = screen_motion(m, point, u);
+      }
+  });
+  if (!volume || !m.diffuse || m.diffuse_velocities.size() != m.diffuse->size()) return out;
+
+  // The diffuse material: each particle's screen motion, weighted by its chord along the pixel's
+  // central ray in front of the nearest opaque surface. Tiles in parallel, particles in order.
+  const DiffuseView frame(*m.diffuse);
+  const SweptBins bins(frame, DiffuseMotion{m.diffuse_velocities, 0.0, 0.0, Vec3d::Zero()}, m.radius,
+                       SphereProjector(cam, 0.5, 0.5), w, h);
+  const int tiles_x = bins.tiles_x(), tiles_y = (h + SweptBins::kTile - 1) / SweptBins::kTile;
+  parallel_for(size_t(tiles_x) * size_t(tiles_y), 1, [&](size_t t0, size_t t1) {
+    std::vector<double> weight;
+    std::vector<std::array<double, 4>> sum;
+    for (size_t t = t0; t < t1; ++t) {
+      const int ox = int(t % size_t(tiles_x)) * SweptBins::kTile, oy = int(t / size_t(tiles_x)) * SweptBins::kTile;
+      const int tw = std::min(SweptBins::kTile, w - ox), th = std::min(SweptBins::kTile, h - oy);
+      weight.assign(size_t(tw) * size_t(th), 0.0);
+      sum.assign(weight.size(), {0, 0, 0, 0});
+      for (const SweptBins::Entry& e : bins.tile(t)) {
+        const Vec3f c = frame.positions[e.particle];
+        const Rgba mv = screen_motion(m, c, m.diffuse_velocities[e.particle]);
+        const double r = m.radius[size_t(frame.types[e.particle])], r2 = r * r;
+        for (int y = std::max(int(e.y0), oy); y <= std::min(int(e.y1), oy + th - 1); ++y)
+          for (int x = std::max(int(e.x0), ox); x <= std::min(int(e.x1), ox + tw - 1); ++x) {
+            const size_t p = size_t(y) * size_t(w) + size_t(x);
+            const Ray ray = cam.ray(float(x) + 0.5f, float(y) + 0.5f);
+            const Vec3d oc = (c - ray.origin).cast<double>(), d = ray.direction.cast<double>();
+            const double tc = oc.dot(d), b2 = oc.squaredNorm() - tc * tc;
+            if (b2 >= r2) continue;
+            // The opaque surface's distance along this ray: planar depth over the ray's forward component.
+            const double stop = double(surface.opaque_depth[p]) / -d.dot(back.cast<double>());
+            const double half = std::sqrt(r2 - b2), len = std::min(tc + half, stop) - std::max(tc - half, 0.0);
+            if (!(len > 0.0)) continue;
+            const size_t l = size_t(y - oy) * size_t(tw) + size_t(x - ox);
+            weight[l] += len;
+            for (int k = 0; k < 4; ++k) sum[l][size_t(k)] += len * mv[size_t(k)];
+          }
+      }
+      for (int ly = 0; ly < th; ++ly)
+        for (int lx = 0; lx < tw; ++lx) {
+          const size_t l = size_t(ly) * size_t(tw) + size_t(lx), p = size_t(oy + ly) * size_t(w) + size_t(ox + lx);
+          if (!(weight[l] > 0.0)) continue;
+          const float opacity = 1.0f - volume->transmittance[p];
+          for (int k = 0; k < 4; ++k)
+            out[p][size_t(k)] = float(opacity * (sum[l][size_t(k)] / weight[l]) + (1.0f - opacity) * out[p][size_t(k)]);
+        }
+    }
+  });
+  return out;
+}
+
+}  // namespace spume
