@@ -1,5 +1,6 @@
 #include "sim/io/bgeo.h"
 
+#include <bit>
 #include <climits>
 #include <initializer_list>
 #include <ostream>
@@ -83,6 +84,11 @@ class HeaderCursor {
            " bytes at offset ", pos_, ", more than the file can hold (", file_.gzipped() ? "at most " : "",
            room(), " bytes remain", file_.gzipped() ? " once decompressed)" : ")");
   }
+  uint8_t peek(std::string_view what) {
+    const std::string_view have = file_.first(pos_ + 1);
+    if (have.size() < pos_ + 1) fail(where(), ": truncated: ", what, " at offset ", pos_, " is past the end");
+    return uint8_t(have[pos_]);
+  }
   template <typename T>
   T read(std::string_view what) {
     return io::load<T>(take(sizeof(T), what).data(), Endian::Big);
@@ -150,6 +156,28 @@ std::vector<PointAttribute> listing(const std::vector<Attr>& attrs) {
   return out;
 }
 
+// One group record (bgeo.h), checked to have one bit an element; returns its name and member count.
+std::pair<std::string, size_t> read_group(HeaderCursor& r, size_t elements, const char* what) {
+  const bool ordered = r.peek(what) == 0x01;
+  if (ordered) r.skip(1, "ordered group flag");
+  const uint16_t length = r.read<uint16_t>("group name length");
+  std::string name(r.take(length, "group name"));
+  const int32_t bits = r.read<int32_t>("group bit count");
+  if (bits < 0 || size_t(bits) != elements)
+    fail(r.where(), ": ", what, " '", name, "' has ", bits, " bits for ", elements, " elements (file corrupt)");
+  const size_t words = (size_t(bits) + 31) / 32;
+  r.require_array(words, 4, "group bit mask");
+  size_t members = 0;
+  for (size_t k = 0; k < words; ++k) members += size_t(std::popcount(r.read<uint32_t>("group bit mask")));
+  if (ordered) {
+    const int32_t n = r.read<int32_t>("ordered group count");
+    if (n < 0) fail(r.where(), ": ", what, " '", name, "' orders ", n, " elements (file corrupt)");
+    for (int32_t k = 0; k < n; ++k)
+      if (r.read<int32_t>("ordered group index") < 0) r.skip(4, "ordered group profile");
+  }
+  return {std::move(name), members};
+}
+
 // The header first, the rest only as far as it says: no byte past what the header accounts for is
 // read or inflated but one, to tell a clean end from trailing data.
 Parsed parse(const std::filesystem::path& path) {
@@ -189,9 +217,9 @@ Parsed parse(const std::filesystem::path& path) {
       p.info.bounds.extend(Vec3f(p.word<float>(i, 0), p.word<float>(i, 1), p.word<float>(i, 2)));
   };
 
-  // Primitives and groups (Houdini particle systems) would need their own parsers; the points are all
-  // spume needs, so the rest is left unread rather than half-understood.
-  if (counts[1] != 0 || counts[2] != 0 || counts[3] != 0 || counts[5] != 0 || counts[6] != 0) {
+  // Primitives (Houdini particle systems) would need their own parsers; the points are all spume
+  // needs, so the rest is left unread rather than half-understood.
+  if (counts[1] != 0 || counts[5] != 0 || counts[6] != 0) {
     p.info.trailing_data_skipped = true;
     keep_points();
     return p;
@@ -199,6 +227,8 @@ Parsed parse(const std::filesystem::path& path) {
   size_t detail_stride = 0;
   p.info.detail_attributes = listing(read_attribute_table(r, counts[7], "detail", detail_stride));
   r.skip(detail_stride * 4, "detail attribute values");
+  for (int32_t g = 0; g < counts[2]; ++g) p.info.point_groups.push_back(read_group(r, p.info.point_count, "point group"));
+  for (int32_t g = 0; g < counts[3]; ++g) read_group(r, 0, "primitive group");
   const std::string_view end = r.take(2, "end marker 00 FF");
   if (uint8_t(end[0]) != 0x00 || uint8_t(end[1]) != 0xff)
     fail(p.where, ": missing end marker: found bytes ", int(uint8_t(end[0])), " ", int(uint8_t(end[1])),
@@ -244,10 +274,10 @@ struct Writer {
     f32(v.y());
     f32(v.z());
   }
-  void header(size_t points, const std::vector<Attr>& attrs) {
+  void header(size_t points, const std::vector<Attr>& attrs, int point_groups = 0) {
     out += "BgeoV";
     i32(5);
-    const int32_t counts[8] = {int32_t(points), 0, 0, 0, int32_t(attrs.size()), 0, 0, 0};
+    const int32_t counts[8] = {int32_t(points), 0, point_groups, 0, int32_t(attrs.size()), 0, 0, 0};
     for (int32_t c : counts) i32(c);
     for (const Attr& a : attrs) {
       io::store(out, uint16_t(a.name.size()), Endian::Big);
@@ -257,8 +287,20 @@ struct Writer {
       for (int k = 0; k < a.size; ++k) i32(0);
     }
   }
+  // An unordered point group over `n` points: the members' bits, least significant first in each word.
+  template <typename Member>
+  void group(const std::string& name, size_t n, Member&& member) {
+    io::store(out, uint16_t(name.size()), Endian::Big);
+    out += name;
+    i32(int32_t(n));
+    for (size_t w = 0; w < (n + 31) / 32; ++w) {
+      uint32_t word = 0;
+      for (size_t b = 0; b < 32 && w * 32 + b < n; ++b) word |= uint32_t(member(w * 32 + b)) << b;
+      io::store(out, word, Endian::Big);
+    }
+  }
   void finish_and_write(const std::filesystem::path& path) {
-    out += std::string("\x00\xff", 2);  // no detail attributes, then the end marker
+    out += std::string("\x00\xff", 2);  // (no detail attributes, any groups written,) the end marker
     const std::string compressed = io::gzip_compress(out);
     write_file_atomically(path, [&](std::ostream& s) { s.write(compressed.data(), std::streamsize(compressed.size())); });
   }
@@ -367,8 +409,8 @@ void write_bgeo(const std::filesystem::path& path, const DiffuseFrame& frame, st
       {"id", kInt, 1, 0},   {"birth", kInt, 1, 0}, {"sample", kInt, 1, 0}};
   if (!ages.empty()) attrs.insert(attrs.end(), {{"age", kFloat, 1, 0}, {"life", kFloat, 1, 0}});
   Writer w;
-  w.out.reserve(256 + n * 11 * 4);
-  w.header(n, attrs);
+  w.out.reserve(256 + n * 11 * 4 + n * 3 / 8);
+  w.header(n, attrs, kDiffuseTypeCount);
   for (size_t i = 0; i < n; ++i) {
     const Vec3f& x = frame.positions[i];
     const Vec3f& v = frame.velocities[i];
@@ -385,6 +427,9 @@ void write_bgeo(const std::filesystem::path& path, const DiffuseFrame& frame, st
       w.f32(ages[i] + frame.lifetimes[i]);
     }
   }
+  // Houdini selects by group (`@group_spray`, a Blast by name): one per type.
+  for (int t = 0; t < kDiffuseTypeCount; ++t)
+    w.group(to_string(DiffuseType(t)), n, [&](size_t i) { return frame.types[i] == DiffuseType(t); });
   w.finish_and_write(path);
 }
 

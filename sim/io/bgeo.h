@@ -8,8 +8,11 @@
 //   (0 float, 1 int, 5 vector; 4 indexed string: int32 string count and int16-length strings instead of
 //   defaults), then `size` int32 default words for types 0/1/5.
 //   Points: x y z w as float32, then each attribute's words in declaration order.
-//   Without primitives or groups: the detail attribute definitions (same form), one record of their
-//   words, and the end marker 00 FF.
+//   Without primitives: the detail attribute definitions (same form), one record of their words, the
+//   point groups, the primitive groups and the end marker 00 FF. A group (SideFX's GPD library for
+//   V5): a byte 01 only when it is ordered, uint16 name length, name, int32 bit count, then a bit mask
+//   of ceil(bits / 32) uint32 words, element i at bit i & 31 of word i >> 5; an ordered group then has
+//   int32 count and int32 indices (a negative one followed by an int32 profile).
 // Houdini's JSON geometry (binary 7F 'N' 'S' 'J', or ASCII '{'/'[') is detected and refused here: the binary
 // form is io/houdini_geometry.h's, which io/particle_file.h picks by the first bytes.
 #include <filesystem>
@@ -31,7 +34,8 @@ struct BgeoInfo {
   int primitive_group_count = 0;
   std::vector<PointAttribute> point_attributes;   // type "float", "int", "vector" or "index"
   std::vector<PointAttribute> detail_attributes;  // empty when trailing data was skipped
-  bool trailing_data_skipped = false;             // primitives/groups present: only points were parsed
+  std::vector<std::pair<std::string, size_t>> point_groups;  // name, member count
+  bool trailing_data_skipped = false;             // primitives present: only points were parsed
   Aabb bounds;                                    // of the point positions
 };
 
@@ -54,7 +58,7 @@ void write_bgeo(const std::filesystem::path& path, const FluidFrame& frame);
 // Gzip-compressed BGEO with point attributes `v` (vector), `type` (int: 0 spray, 1 foam, 2 bubble),
 // `lifetime` (float, s remaining), `id` (int, parent fluid id), `birth` (int, birth step), `sample`
 // (int); with `ages` (s, one per particle: io/diffuse_age.h) also Houdini's `age` and `life` (float, s:
-// age + lifetime, so age / life runs from 0 towards 1).
+// age + lifetime, so age / life runs from 0 towards 1); and the point groups `spray`, `foam`, `bubble`.
 void write_bgeo(const std::filesystem::path& path, const DiffuseFrame& frame, std::span<const float> ages = {});
 
 }  // namespace spume

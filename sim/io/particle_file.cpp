@@ -297,8 +297,13 @@ std::string describe_file(const std::filesystem::path& path) {
       out << "  format: classic BGEO version " << info.version << (info.gzipped ? ", gzip-compressed" : "") << "\n";
       out << "  attributes: " << attribute_list(info.point_attributes) << "\n";
       if (!info.detail_attributes.empty()) out << "  detail attributes: " << attribute_list(info.detail_attributes) << "\n";
+      if (!info.point_groups.empty()) {
+        out << "  point groups:";
+        for (const auto& [name, members] : info.point_groups) out << " " << name << " (" << members << ")";
+        out << "\n";
+      }
       if (info.trailing_data_skipped)
-        out << "  note: " << info.primitive_count << " primitives / groups after the points were not read\n";
+        out << "  note: " << info.primitive_count << " primitives and the groups after the points were not read\n";
       if (has_attribute(info.point_attributes, "type") && has_attribute(info.point_attributes, "lifetime")) {
         out << "  content: spume diffuse particles\n";
         describe_diffuse(out, read_bgeo_diffuse(path));

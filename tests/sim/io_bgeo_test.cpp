@@ -220,6 +220,60 @@ TEST(Bgeo, DiffuseRoundTrip) {
   EXPECT_EQ(e.ids, d.ids);
 }
 
+// The diffuse export's point groups, byte by byte as SideFX's GPD library (the V5 reference) lays them
+// out after the detail block: uint16 name length, name, int32 bit count, big-endian uint32 mask words
+// with point i at bit i & 31 of word i >> 5. 35 points: spray at 0, 2 and 33; bubbles at 1 and 34.
+TEST(Bgeo, DiffuseExportCarriesAPointGroupPerTypeAsGpdWritesThem) {
+  TempDir dir;
+  DiffuseFrame d;
+  d.resize(35);
+  for (size_t i = 0; i < 35; ++i) {
+    d.positions[i] = Vec3f(float(i), 0, 0), d.velocities[i] = Vec3f::Zero(), d.lifetimes[i] = 1.0f;
+    d.types[i] = DiffuseType::Foam, d.ids[i] = i;
+  }
+  for (size_t i : {0, 2, 33}) d.types[i] = DiffuseType::Spray;
+  for (size_t i : {1, 34}) d.types[i] = DiffuseType::Bubble;
+  const fs::path p = dir.path / "groups.bgeo";
+  write_bgeo(p, d);
+  const std::string raw = io::gunzip(read_file(p), "test");
+  Be groups;
+  groups.u16(5).raw("spray").i32(35).u32(0b101).u32(0b10);
+  groups.u16(4).raw("foam").i32(35).u32(0xFFFFFFFFu & ~0b111u).u32(0b001);
+  groups.u16(6).raw("bubble").i32(35).u32(0b010).u32(0b100);
+  const std::string tail = groups.b + std::string("\x00\xff", 2);
+  ASSERT_GE(raw.size(), tail.size());
+  EXPECT_EQ(raw.substr(raw.size() - tail.size()), tail);
+  EXPECT_EQ(raw.substr(17, 4), std::string("\x00\x00\x00\x03", 4)) << "the header counts 3 point groups";
+  const BgeoInfo info = read_bgeo_info(p);
+  EXPECT_FALSE(info.trailing_data_skipped);
+  using Group = std::pair<std::string, size_t>;
+  EXPECT_EQ(info.point_groups, (std::vector<Group>{{"spray", 3}, {"foam", 30}, {"bubble", 2}}));
+  EXPECT_EQ(read_bgeo_diffuse(p).types, d.types);
+}
+
+// A hand-made file with an ordered point group (flag byte 01, then the order, a negative index
+// followed by its profile) and a primitive group over no primitives: read through to the end marker.
+TEST(Bgeo, ReadsOrderedAndPrimitiveGroups) {
+  TempDir dir;
+  Be f;
+  f.raw("BgeoV").i32(5);
+  for (int c : {2, 0, 1, 1, 0, 0, 0, 0}) f.i32(c);
+  f.f32(1).f32(2).f32(3).f32(1).f32(4).f32(5).f32(6).f32(1);
+  f.raw("\x01").u16(3).raw("sel").i32(2).u32(0b11).i32(2).i32(1).i32(-1).i32(7);
+  f.u16(5).raw("prims").i32(0);
+  f.raw(std::string("\x00\xff", 2));
+  const fs::path p = dir.write("ordered.bgeo", f.b);
+  const BgeoInfo info = read_bgeo_info(p);
+  ASSERT_EQ(info.point_groups.size(), 1u);
+  EXPECT_EQ(info.point_groups[0], (std::pair<std::string, size_t>{"sel", 2}));
+  EXPECT_EQ(read_bgeo(p).size(), 2u);
+  // A mask for the wrong number of points is corrupt, and the error says which group.
+  Be bad = f;
+  bad.b.replace(bad.b.find("sel") + 3, 4, std::string("\x00\x00\x00\x05", 4));
+  EXPECT_NE(error_of([&] { read_bgeo_info(dir.write("bad.bgeo", bad.b)); }).find("point group 'sel' has 5 bits for 2"),
+            std::string::npos);
+}
+
 TEST(Bgeo, TruncatedFilesGiveErrorsNamingTheFile) {
   TempDir dir;
   const std::string raw = io::gunzip(read_file(kRealFrame), "test");
