@@ -9,7 +9,7 @@
 namespace spume {
 
 void mix_color(const VolumeShading& shading, const std::array<double, kDiffuseTypeCount>& length,
-               const std::array<Vec3d, kDiffuseTypeCount>& weight, RaySample& out) {
+               const std::array<Vec3d, kDiffuseTypeCount>& weight, RaySample& out, RayTypes* types) {
   double total = 0.0;
   Vec3d c = Vec3d::Zero();
   for (int k = 0; k < kDiffuseTypeCount; ++k) {
@@ -18,9 +18,10 @@ void mix_color(const VolumeShading& shading, const std::array<double, kDiffuseTy
   }
   if (!(total > 0.0)) return;
   out.color = c / total;
+  if (!types) return;
   for (size_t k = 0; k < size_t(kDiffuseTypeCount); ++k) {
-    out.share[k] = length[k] / total;
-    out.type_color[k] = shading.color[k].cwiseProduct(weight[k]) / total;
+    types->share[k] = length[k] / total;
+    types->type_color[k] = shading.color[k].cwiseProduct(weight[k]) / total;
   }
 }
 
@@ -84,7 +85,8 @@ double union_length_all(const Interval* iv, size_t n) {
 }
 }  // namespace
 
-RaySample absorb_intervals(const Interval* iv, size_t n, const VolumeShading& shading, WaterView water) {
+RaySample absorb_intervals(const Interval* iv, size_t n, const VolumeShading& shading, WaterView water,
+                           RayTypes* types) {
   RaySample out;
   if (n == 0) return out;
   unsigned seen = 0;
@@ -111,7 +113,7 @@ RaySample absorb_intervals(const Interval* iv, size_t n, const VolumeShading& sh
       if (seen & (1u << k)) per_type(size_t(k), k);
   }
   out.transmittance = std::exp(-shading.alpha * union_length);
-  mix_color(shading, length, weight, out);
+  mix_color(shading, length, weight, out, types);
   return out;
 }
 
@@ -130,12 +132,12 @@ void MarchAccumulator::add(unsigned type_mask, double t) {
     }
 }
 
-RaySample MarchAccumulator::finish() const {
+RaySample MarchAccumulator::finish(RayTypes* types) const {
   RaySample out;
   // prod_i exp(-delta_i alpha dx) = exp(-alpha dx * #{i : delta_i = 1}): the same product, without
   // rounding a long chain of factors.
   out.transmittance = std::exp(-shading_.alpha * dx_ * double(covered_));
-  mix_color(shading_, length_, weight_, out);
+  mix_color(shading_, length_, weight_, out, types);
   return out;
 }
 

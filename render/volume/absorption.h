@@ -25,17 +25,20 @@ struct VolumeShading {
 struct RaySample {
   double transmittance = 1.0;
   Vec3d color = Vec3d::Zero();
-  // Each type's part of it, for the per-type layers: share[k] = tau_k / sum_j tau_j (the share of
-  // the opacity 1 - L it owns; they sum to 1 where anything is seen) and type_color[k] its term of
-  // `color` (they sum to it, to rounding).
+};
+
+// Each type's part of a RaySample, for the per-type layers, made only when asked for (a pointer that
+// may be null below): share[k] = tau_k / sum_j tau_j (the share of the opacity 1 - L it owns; they
+// sum to 1 where anything is seen) and type_color[k] its term of `color` (they sum to it, to rounding).
+struct RayTypes {
   std::array<double, kDiffuseTypeCount> share{};
   std::array<Vec3d, kDiffuseTypeCount> type_color{Vec3d::Zero(), Vec3d::Zero(), Vec3d::Zero()};
 };
 
 // The colour from per-type lengths inside the material and the same lengths dimmed by the water in
-// front (weight), into out.color, share and type_color.
+// front (weight), into out.color and, when not null, *types.
 void mix_color(const VolumeShading& shading, const std::array<double, kDiffuseTypeCount>& length,
-               const std::array<Vec3d, kDiffuseTypeCount>& weight, RaySample& out);
+               const std::array<Vec3d, kDiffuseTypeCount>& weight, RaySample& out, RayTypes* types);
 
 // The water stretches of one ray (empty when it never enters water).
 struct WaterView {
@@ -55,7 +58,8 @@ inline bool interval_before(const Interval& a, const Interval& b) {
 void sort_intervals(Interval* iv, size_t n);
 
 // Chords sorted by t0 (sort_intervals). Lengths summed in double, in t order: deterministic.
-RaySample absorb_intervals(const Interval* iv, size_t n, const VolumeShading& shading, WaterView water);
+RaySample absorb_intervals(const Interval* iv, size_t n, const VolumeShading& shading, WaterView water,
+                           RayTypes* types = nullptr);
 
 // Eq. 9 as written: add() one sample x_s + i dx w per i, with the set of types whose spheres
 // contain it (bit k = type k) and its distance t along the ray (for water dimming).
@@ -63,7 +67,7 @@ class MarchAccumulator {
  public:
   MarchAccumulator(const VolumeShading& shading, WaterView water, double dx) : shading_(shading), water_(water), dx_(dx) {}
   void add(unsigned type_mask, double t);
-  RaySample finish() const;
+  RaySample finish(RayTypes* types = nullptr) const;
 
  private:
   const VolumeShading& shading_;
@@ -81,14 +85,14 @@ class MarchAccumulator {
 class PixelAverage {
  public:
   explicit PixelAverage(bool by_type = false) : by_type_(by_type) {}
-  void add(const RaySample& s) {
+  void add(const RaySample& s, const RayTypes* types = nullptr) {
     const double opacity = 1.0 - s.transmittance;
     l_sum_ += s.transmittance;
     premultiplied_ += opacity * s.color;
-    if (by_type_)
+    if (by_type_ && types)
       for (size_t k = 0; k < size_t(kDiffuseTypeCount); ++k) {
-        type_opacity_[k] += opacity * s.share[k];
-        type_premultiplied_[k] += opacity * s.type_color[k];
+        type_opacity_[k] += opacity * types->share[k];
+        type_premultiplied_[k] += opacity * types->type_color[k];
       }
     ++n_;
   }

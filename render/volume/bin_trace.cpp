@@ -157,7 +157,8 @@ const std::vector<uint8_t>& count_tile_candidates(int ox, int oy, int w, int h, 
 }
 
 size_t trace_bin_tile(const TileRays& t, int ox, int oy, const Vec3d& origin, const std::array<double, kDiffuseTypeCount>& r2,
-                      const VolumeShading& shading, BinScratch& s, std::vector<RaySample>& out) {
+                      const VolumeShading& shading, BinScratch& s, std::vector<RaySample>& out,
+                      std::vector<RayTypes>* types) {
   const std::vector<BinnedSphere>& spheres = s.tiles[size_t((oy / kTile) * 2 + ox / kTile)];
   tile_chords(t, spheres, origin, r2, s);
   size_t found = 0;
@@ -166,7 +167,7 @@ size_t trace_bin_tile(const TileRays& t, int ox, int oy, const Vec3d& origin, co
     const size_t n = s.ray_end[i] - s.ray_start[i];
     found += n;
     sort_intervals(l, n);
-    out[i] = absorb_intervals(l, n, shading, water_of(t, t.rays[i]));
+    out[i] = absorb_intervals(l, n, shading, water_of(t, t.rays[i]), types ? &(*types)[i] : nullptr);
   }
   return found;
 }

@@ -34,9 +34,10 @@ void order_bin(const BinnedSphere* b, const BinnedSphere* e, const Camera& cam, 
 const std::vector<uint8_t>& count_tile_candidates(int ox, int oy, int w, int h, int spp, BinScratch& s);
 
 // Transmittance and colour of the tile's rays `t`, the tile at (ox, oy) whose candidates were
-// counted last. origin: the camera position; r2: squared radius per type. Returns the number of
-// chords found.
+// counted last. origin: the camera position; r2: squared radius per type. With `types`, each ray's
+// split by type too. Returns the number of chords found.
 size_t trace_bin_tile(const TileRays& t, int ox, int oy, const Vec3d& origin, const std::array<double, kDiffuseTypeCount>& r2,
-                      const VolumeShading& shading, BinScratch& s, std::vector<RaySample>& out);
+                      const VolumeShading& shading, BinScratch& s, std::vector<RaySample>& out,
+                      std::vector<RayTypes>* types = nullptr);
 
 }  // namespace spume

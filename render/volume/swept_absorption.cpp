@@ -7,7 +7,7 @@
 namespace spume {
 
 RaySample absorb_swept(const std::vector<SweptChord>& chords, double t_in, double t_out, const VolumeShading& shading,
-                       WaterView water, SweptScratch& scratch) {
+                       WaterView water, SweptScratch& scratch, RayTypes* types) {
   RaySample out;
   std::vector<SweptScratch::Event>& events = scratch.events;
   events.clear();
@@ -49,7 +49,7 @@ RaySample absorb_swept(const std::vector<SweptChord>& chords, double t_in, doubl
     }
   }
   out.transmittance = std::exp(-shading.alpha * total);
-  mix_color(shading, length, weight, out);
+  mix_color(shading, length, weight, out, types);
   return out;
 }
 

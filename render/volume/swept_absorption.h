@@ -26,6 +26,6 @@ struct SweptScratch {
 // `chords` of one ray, a particle's pieces next to each other, whose material lies in [t_in, t_out]
 // (m along the ray); `water` relative to t_in, as TileRays gives it.
 RaySample absorb_swept(const std::vector<SweptChord>& chords, double t_in, double t_out, const VolumeShading& shading,
-                       WaterView water, SweptScratch& scratch);
+                       WaterView water, SweptScratch& scratch, RayTypes* types = nullptr);
 
 }  // namespace spume

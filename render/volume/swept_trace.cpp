@@ -105,7 +105,7 @@ const std::vector<uint8_t>& swept_candidates(const SweptBins& bins, int x0, int 
 
 size_t trace_swept_tile(const TileRays& t, const SweptBins& bins, DiffuseView frame, const DiffuseMotion& motion,
                         const Vec3d& origin, const std::array<double, kDiffuseTypeCount>& r2, const VolumeShading& shading,
-                        SweptTraceScratch& s, std::vector<RaySample>& out) {
+                        SweptTraceScratch& s, std::vector<RaySample>& out, std::vector<RayTypes>* types) {
   const size_t rays = t.rays.size(), spp = size_t(t.spp), w = size_t(t.w);
   if (s.chords.size() < rays) s.chords.resize(rays);
   for (size_t i = 0; i < rays; ++i) s.chords[i].clear();
@@ -133,7 +133,8 @@ size_t trace_swept_tile(const TileRays& t, const SweptBins& bins, DiffuseView fr
   for (size_t i = 0; i < rays; ++i) {
     if (s.chords[i].empty()) continue;
     found += s.chords[i].size();
-    out[i] = absorb_swept(s.chords[i], t.rays[i].t_in, t.rays[i].t_out, shading, water_of(t, t.rays[i]), s.absorb);
+    out[i] = absorb_swept(s.chords[i], t.rays[i].t_in, t.rays[i].t_out, shading, water_of(t, t.rays[i]), s.absorb,
+                          types ? &(*types)[i] : nullptr);
   }
   return found;
 }

@@ -62,6 +62,6 @@ const std::vector<uint8_t>& swept_candidates(const SweptBins& bins, int x0, int 
 // L and C_d of the tile's rays `t`. Returns the number of path pieces met.
 size_t trace_swept_tile(const TileRays& t, const SweptBins& bins, DiffuseView frame, const DiffuseMotion& motion,
                         const Vec3d& origin, const std::array<double, kDiffuseTypeCount>& r2, const VolumeShading& shading,
-                        SweptTraceScratch& s, std::vector<RaySample>& out);
+                        SweptTraceScratch& s, std::vector<RaySample>& out, std::vector<RayTypes>* types = nullptr);
 
 }  // namespace spume

@@ -71,7 +71,7 @@ struct Scratch {
   SweptTraceScratch swept;
 };
 
-size_t exact_embree(const Pass& pass, Scratch& s, std::vector<RaySample>& out) {
+size_t exact_embree(const Pass& pass, Scratch& s, std::vector<RaySample>& out, std::vector<RayTypes>* types) {
   const TileRays& t = s.tile;
   const Vec3d o = pass.camera->position.cast<double>();
   size_t found = 0;
@@ -92,12 +92,13 @@ size_t exact_embree(const Pass& pass, Scratch& s, std::vector<RaySample>& out) {
     }
     found += s.intervals.size();
     std::sort(s.intervals.begin(), s.intervals.end(), [](const Interval& a, const Interval& b) { return interval_before(a, b); });
-    out[i] = absorb_intervals(s.intervals.data(), s.intervals.size(), pass.shading, water_of(t, r));
+    out[i] = absorb_intervals(s.intervals.data(), s.intervals.size(), pass.shading, water_of(t, r),
+                              types ? &(*types)[i] : nullptr);
   }
   return found;
 }
 
-size_t march(const Pass& pass, Scratch& s, std::vector<RaySample>& out) {
+size_t march(const Pass& pass, Scratch& s, std::vector<RaySample>& out, std::vector<RayTypes>* types) {
   const TileRays& t = s.tile;
   const Vec3d o = pass.camera->position.cast<double>();
   size_t samples = 0;
@@ -115,7 +116,7 @@ size_t march(const Pass& pass, Scratch& s, std::vector<RaySample>& out) {
       acc.add(mask, tj - r.t_in);
     }
     samples += steps + 1;
-    out[i] = acc.finish();
+    out[i] = acc.finish(types ? &(*types)[i] : nullptr);
   }
   return samples;
 }
@@ -224,6 +225,8 @@ VolumeImage render_volume(DiffuseView frame, const Camera& camera, const VolumeS
   parallel_for(size_t(bins_x) * size_t(bins_y), 1, [&](size_t b, size_t e) {
     Scratch& s = scratch.local();
     std::vector<RaySample> samples;
+    std::vector<RayTypes> split;  // with settings.split_types
+    std::vector<RayTypes>* types = settings.split_types ? &split : nullptr;
     for (size_t bin = b; bin < e; ++bin) {
       const int bx = int(bin % size_t(bins_x)) * kBin, by = int(bin / size_t(bins_x)) * kBin;
       if (pass.bins) order_bin(pass.bins->begin(bin), pass.bins->end(bin), *pass.camera, s.bin);
@@ -238,22 +241,27 @@ VolumeImage render_volume(DiffuseView frame, const Camera& camera, const VolumeS
                                               : nullptr;
           make_tile_rays(pass.ray_params, x0, y0, w, h, s.tile, wanted);
           samples.assign(s.tile.rays.size(), RaySample{});
+          if (types) split.assign(s.tile.rays.size(), RayTypes{});
           size_t n = 0;
           if (pass.swept) {
             n = trace_swept_tile(s.tile, *pass.swept, *pass.frame, pass.motion, pass.camera->position.cast<double>(),
-                                 pass.r2, pass.shading, s.swept, samples);
+                                 pass.r2, pass.shading, s.swept, samples, types);
           } else if (pass.grids) {
-            n = march(pass, s, samples);
+            n = march(pass, s, samples, types);
           } else if (pass.bins) {
-            n = trace_bin_tile(s.tile, ox, oy, pass.camera->position.cast<double>(), pass.r2, pass.shading, s.bin, samples);
+            n = trace_bin_tile(s.tile, ox, oy, pass.camera->position.cast<double>(), pass.r2, pass.shading, s.bin, samples,
+                               types);
           } else {
-            n = exact_embree(pass, s, samples);
+            n = exact_embree(pass, s, samples, types);
           }
           found += n;
           for (int ly = 0; ly < h; ++ly)
             for (int lx = 0; lx < w; ++lx) {
               PixelAverage avg(settings.split_types);
-              for (int k = 0; k < spp; ++k) avg.add(samples[(size_t(ly) * size_t(w) + size_t(lx)) * size_t(spp) + size_t(k)]);
+              for (int k = 0; k < spp; ++k) {
+                const size_t ri = (size_t(ly) * size_t(w) + size_t(lx)) * size_t(spp) + size_t(k);
+                avg.add(samples[ri], types ? &split[ri] : nullptr);
+              }
               const size_t p = size_t(y0 + ly) * size_t(camera.width) + size_t(x0 + lx);
               avg.finish(img.transmittance[p], img.color[p]);
               if (settings.split_types)

@@ -26,25 +26,29 @@ TEST(AbsorptionSplit, OverlappingTypesShareTheOpacityByTheirOpticalDepth) {
   shading.alpha = 1.0;
   shading.color[kSpray] = Vec3d(1, 0, 0), shading.color[kFoam] = Vec3d(0, 1, 0), shading.color[kBubble] = Vec3d(0, 0, 1);
   Interval iv[2] = {{0.0f, 1.0f, uint32_t(kSpray)}, {0.5f, 2.0f, uint32_t(kFoam)}};
-  const RaySample s = absorb_intervals(iv, 2, shading, {});
+  RayTypes t;
+  const RaySample s = absorb_intervals(iv, 2, shading, {}, &t);
   EXPECT_NEAR(s.transmittance, std::exp(-2.0), 1e-12);
-  EXPECT_NEAR(s.share[kSpray], 0.4, 1e-12);
-  EXPECT_NEAR(s.share[kFoam], 0.6, 1e-12);
-  EXPECT_EQ(s.share[kBubble], 0.0);
-  expect_near3(s.type_color[kSpray], Vec3d(0.4, 0, 0), 1e-12);
-  expect_near3(s.type_color[kFoam], Vec3d(0, 0.6, 0), 1e-12);
+  EXPECT_NEAR(t.share[kSpray], 0.4, 1e-12);
+  EXPECT_NEAR(t.share[kFoam], 0.6, 1e-12);
+  EXPECT_EQ(t.share[kBubble], 0.0);
+  expect_near3(t.type_color[kSpray], Vec3d(0.4, 0, 0), 1e-12);
+  expect_near3(t.type_color[kFoam], Vec3d(0, 0.6, 0), 1e-12);
   expect_near3(s.color, Vec3d(0.4, 0.6, 0), 1e-12);
+  const RaySample plain = absorb_intervals(iv, 2, shading, {});
+  EXPECT_EQ(plain.color, s.color) << "asking for the split changes nothing else";
 }
 
 // Two samples of one pixel: spray with L = 0.5 and white, foam with L = 0.8 and grey 0.5. Averaged:
 // L = 0.65; spray's opacity (1 - 0.5) / 2 = 0.25, foam's (1 - 0.8) / 2 = 0.1.
 TEST(AbsorptionSplit, APixelsTypeLayersAverageItsSamplesAndSumToItsDiffuseColour) {
   RaySample spray, foam;
-  spray.transmittance = 0.5, spray.color = Vec3d::Ones(), spray.share[kSpray] = 1.0, spray.type_color[kSpray] = Vec3d::Ones();
-  foam.transmittance = 0.8, foam.color = Vec3d::Constant(0.5), foam.share[kFoam] = 1.0,
-  foam.type_color[kFoam] = Vec3d::Constant(0.5);
+  RayTypes spray_t, foam_t;
+  spray.transmittance = 0.5, spray.color = Vec3d::Ones(), spray_t.share[kSpray] = 1.0, spray_t.type_color[kSpray] = Vec3d::Ones();
+  foam.transmittance = 0.8, foam.color = Vec3d::Constant(0.5), foam_t.share[kFoam] = 1.0,
+  foam_t.type_color[kFoam] = Vec3d::Constant(0.5);
   PixelAverage avg(true);
-  avg.add(spray), avg.add(foam);
+  avg.add(spray, &spray_t), avg.add(foam, &foam_t);
   float l;
   Vec3f cd;
   avg.finish(l, cd);
@@ -61,7 +65,7 @@ TEST(AbsorptionSplit, APixelsTypeLayersAverageItsSamplesAndSumToItsDiffuseColour
   EXPECT_NEAR(o[kSpray] + o[kFoam] + o[kBubble], 1.0f - l, 1e-7f);
   EXPECT_NEAR((p[kSpray] + p[kFoam] + p[kBubble]).x(), (1.0f - l) * cd.x(), 1e-6f);
   PixelAverage whole;  // without by_type: no layers
-  whole.add(spray);
+  whole.add(spray, &spray_t);
   whole.finish_type(kSpray, p[0], o[0]);
   EXPECT_EQ(o[0], 0.0f);
 }
