@@ -106,7 +106,8 @@ RenderedFrame FrameRenderer::render_frame(const FrameInputs& in, FrameReport* re
     motion.previous = camera_at_time(in.time - dt), motion.now = camera, motion.next = camera_at_time(in.time + dt);
     motion.frame_seconds = dt;
     motion.fluid_positions = in.fluid, motion.fluid_velocities = in.fluid_velocities;
-    motion.fluid_support = settings_.surface.support_factor * settings_.surface.particle_radius;
+    // 2.5 r: the few particles nearest a surface point (~8), a quarter of the kernel's neighbours to visit.
+    motion.fluid_support = 2.5f * settings_.surface.particle_radius;
     motion.solids = in.solid_set;
     motion.diffuse = in.diffuse, motion.diffuse_velocities = in.diffuse_velocities;
     for (int k = 0; k < kDiffuseTypeCount; ++k) motion.radius[size_t(k)] = settings_.volume.look[size_t(k)].radius;

@@ -13,29 +13,45 @@ namespace {
 
 using Vec2d = Eigen::Vector2d;
 
-// Pixel coordinates (x right, y down, as the image's rows) of world point p through `cam`; false
-// behind the camera.
-bool project(const Camera& cam, const Vec3f& p, Vec2d& out) {
-  Vec3f right, up, back;
-  cam.basis(right, up, back);
-  const Vec3d v = (p - cam.position).cast<double>();
-  const double z = -v.dot(back.cast<double>());
-  if (!(z > 1e-9)) return false;
-  const double tan_y = std::tan(0.5 * double(cam.fov_y_degrees) * std::numbers::pi / 180.0);
-  const double tan_x = tan_y * double(cam.width) / double(cam.height);
-  const double sx = v.dot(right.cast<double>()) / z, sy = v.dot(up.cast<double>()) / z;
-  out = Vec2d((sx / tan_x + 1.0) * 0.5 * cam.width, (1.0 - sy / tan_y) * 0.5 * cam.height);
-  return true;
-}
+// A camera's pinhole, worked out once: pixel coordinates (x right, y down, as the image's rows) of
+// world points, and the unnormalised ray through a pixel (forward component 1).
+struct Pinhole {
+  explicit Pinhole(const Camera& cam) : origin(cam.position.cast<double>()), width(cam.width), height(cam.height) {
+    Vec3f r, u, b;
+    cam.basis(r, u, b);
+    right = r.cast<double>(), up = u.cast<double>(), forward = -b.cast<double>();
+    tan_y = std::tan(0.5 * double(cam.fov_y_degrees) * std::numbers::pi / 180.0);
+    tan_x = tan_y * double(cam.width) / double(cam.height);
+  }
+  // False behind the camera.
+  bool project(const Vec3d& p, Vec2d& out) const {
+    const Vec3d v = p - origin;
+    const double z = v.dot(forward);
+    if (!(z > 1e-9)) return false;
+    out = Vec2d((v.dot(right) / z / tan_x + 1.0) * 0.5 * width, (1.0 - v.dot(up) / z / tan_y) * 0.5 * height);
+    return true;
+  }
+  Vec3d ray(int x, int y) const {
+    const double sx = (2.0 * (x + 0.5) / width - 1.0) * tan_x, sy = (1.0 - 2.0 * (y + 0.5) / height) * tan_y;
+    return sx * right + sy * up + forward;
+  }
+  Vec3d origin, right, up, forward;
+  double tan_x, tan_y;
+  int width, height;
+};
 
-// {forward u, forward v, backward u, backward v} of a point at p moving at u (m/s); v is up.
-Rgba screen_motion(const MotionScene& m, const Vec3f& p, const Vec3f& u) {
-  Vec2d now, next, prev;
-  const float dt = float(m.frame_seconds);
-  if (!project(m.now, p, now) || !project(m.next, p + dt * u, next) || !project(m.previous, p - dt * u, prev))
-    return {0, 0, 0, 0};
-  return {float(next.x() - now.x()), float(now.y() - next.y()), float(prev.x() - now.x()), float(now.y() - prev.y())};
-}
+struct Pinholes {
+  explicit Pinholes(const MotionScene& m) : previous(m.previous), now(m.now), next(m.next), dt(m.frame_seconds) {}
+  Pinhole previous, now, next;
+  double dt;
+
+  // {forward u, forward v, backward u, backward v} of a point at p moving at u (m/s); v is up.
+  Rgba motion(const Vec3d& p, const Vec3d& u) const {
+    Vec2d a, b, c;
+    if (!now.project(p, a) || !next.project(p + dt * u, b) || !previous.project(p - dt * u, c)) return {0, 0, 0, 0};
+    return {float(b.x() - a.x()), float(a.y() - b.y()), float(c.x() - a.x()), float(a.y() - c.y())};
+  }
+};
 
 // The fluid's velocity near a point: particles binned in cells of the kernel support.
 class FluidVelocity {
@@ -68,11 +84,11 @@ class FluidVelocity {
           const int i = c[0] + dx, j = c[1] + dy, k = c[2] + dz;
           if (i < 0 || j < 0 || k < 0 || i >= n_[0] || j >= n_[1] || k >= n_[2]) continue;
           const size_t cell = (size_t(k) * n_[1] + size_t(j)) * n_[0] + size_t(i);
-          for (uint32_t q = start_[cell]; q < start_[cell + 1]; ++q) {
-            const float d2 = (x_[index_[q]] - p).squaredNorm();
+          for (uint32_t e = start_[cell]; e < start_[cell + 1]; ++e) {
+            const float d2 = (x_[index_[e]] - p).squaredNorm();
             if (d2 >= h2) continue;
-            const double w = std::pow(1.0 - double(d2 / h2), 3);
-            wsum += w, vsum += w * v_[index_[q]].cast<double>();
+            const double q = 1.0 - double(d2 / h2), w = q * q * q;
+            wsum += w, vsum += w * v_[index_[e]].cast<double>();
           }
         }
     return wsum > 0.0 ? Vec3f((vsum / wsum).cast<float>()) : Vec3f::Zero();
@@ -128,26 +144,22 @@ std::vector<Rgba> motion_vectors(const MotionScene& m, const SurfaceImage& surfa
   const int w = cam.width, h = cam.height;
   std::vector<Rgba> out(size_t(w) * size_t(h), Rgba{0, 0, 0, 0});
   const FluidVelocity fluid(m.fluid_positions, m.fluid_velocities, m.fluid_support);
-  Vec3f right, up, back;
-  cam.basis(right, up, back);
-  const float tan_y = std::tan(0.5f * cam.fov_y_degrees * std::numbers::pi_v<float> / 180.0f);
-  const float tan_x = tan_y * float(w) / float(h);
+  const Pinholes pin(m);
   parallel_for(size_t(h), 8, [&](size_t y0, size_t y1) {
     for (size_t y = y0; y < y1; ++y)
       for (int x = 0; x < w; ++x) {
         const size_t p = y * size_t(w) + size_t(x);
-        const float sx = (2.0f * (float(x) + 0.5f) / float(w) - 1.0f) * tan_x;
-        const float sy = (1.0f - 2.0f * (float(y) + 0.5f) / float(h)) * tan_y;
-        const Vec3f dir = sx * right + sy * up - back;  // forward component 1: planar depth scales it
+        const Vec3d dir = pin.now.ray(x, int(y));  // forward component 1: planar depth scales it
         const float depth = surface.depth[p];
         if (!std::isfinite(depth)) {  // sky: a point far away, moved by the camera only
-          out[p] = screen_motion(m, cam.position + 1e6f * dir, Vec3f::Zero());
+          out[p] = pin.motion(pin.now.origin + 1e6 * dir, Vec3d::Zero());
           continue;
         }
-        const Vec3f point = cam.position + depth * dir;
+        const Vec3d point = pin.now.origin + double(depth) * dir;
         const bool water = depth < surface.opaque_depth[p];
-        const Vec3f u = water ? fluid.at(point) : solid_velocity(m.solids, point, 1e-3f * depth + 1e-4f);
-        out[p] = screen_motion(m, point, u);
+        const Vec3f at = point.cast<float>();
+        const Vec3f u = water ? fluid.at(at) : solid_velocity(m.solids, at, 1e-3f * depth + 1e-4f);
+        out[p] = pin.motion(point, u.cast<double>());
       }
   });
   if (!volume || !m.diffuse || m.diffuse_velocities.size() != m.diffuse->size()) return out;
@@ -167,18 +179,19 @@ std::vector<Rgba> motion_vectors(const MotionScene& m, const SurfaceImage& surfa
       weight.assign(size_t(tw) * size_t(th), 0.0);
       sum.assign(weight.size(), {0, 0, 0, 0});
       for (const SweptBins::Entry& e : bins.tile(t)) {
-        const Vec3f c = frame.positions[e.particle];
-        const Rgba mv = screen_motion(m, c, m.diffuse_velocities[e.particle]);
+        const Vec3d c = frame.positions[e.particle].cast<double>();
+        const Rgba mv = pin.motion(c, m.diffuse_velocities[e.particle].cast<double>());
         const double r = m.radius[size_t(frame.types[e.particle])], r2 = r * r;
+        const Vec3d oc = c - pin.now.origin;
         for (int y = std::max(int(e.y0), oy); y <= std::min(int(e.y1), oy + th - 1); ++y)
           for (int x = std::max(int(e.x0), ox); x <= std::min(int(e.x1), ox + tw - 1); ++x) {
             const size_t p = size_t(y) * size_t(w) + size_t(x);
-            const Ray ray = cam.ray(float(x) + 0.5f, float(y) + 0.5f);
-            const Vec3d oc = (c - ray.origin).cast<double>(), d = ray.direction.cast<double>();
+            const Vec3d ray = pin.now.ray(x, y);
+            const double norm = ray.norm();  // the ray's forward component is 1: planar depth x norm = distance
+            const Vec3d d = ray / norm;
             const double tc = oc.dot(d), b2 = oc.squaredNorm() - tc * tc;
             if (b2 >= r2) continue;
-            // The opaque surface's distance along this ray: planar depth over the ray's forward component.
-            const double stop = double(surface.opaque_depth[p]) / -d.dot(back.cast<double>());
+            const double stop = double(surface.opaque_depth[p]) * norm;  // the opaque surface along this ray
             const double half = std::sqrt(r2 - b2), len = std::min(tc + half, stop) - std::max(tc - half, 0.0);
             if (!(len > 0.0)) continue;
             const size_t l = size_t(y - oy) * size_t(tw) + size_t(x - ox);

@@ -6,7 +6,7 @@
 //
 // What a pixel shows moves with:
 //   - the water: the fluid particles' velocities near the surface point (a weighted mean over those
-//     within the kernel support, weight (1 - d^2/h^2)^3);
+//     within h = 2.5 r, weight (1 - d^2/h^2)^3);
 //   - a solid: its rigid motion at the point (Solid::velocity_at of the solid nearest the point);
 //   - the ground and the sky: nothing (only the camera moves them);
 //   - diffuse material in front: the particles along the pixel's ray, each weighted by its chord, the
@@ -27,7 +27,7 @@ struct MotionScene {
   Camera previous, now, next;  // at t - dt, t, t + dt
   double frame_seconds = 0.0;  // dt
   std::span<const Vec3f> fluid_positions, fluid_velocities;  // velocities may be empty: the water is still
-  float fluid_support = 0.0f;                                  // m, h
+  float fluid_support = 0.0f;                                  // m, h: particles within it count
   const SolidSet* solids = nullptr;                            // at t, with their velocities; may be null
   const DiffusePoints* diffuse = nullptr;                      // may be null
   std::span<const Vec3f> diffuse_velocities;

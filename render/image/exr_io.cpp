@@ -1,5 +1,6 @@
 #include "render/image/exr_io.h"
 
+#include <array>
 #include <exception>
 
 #include <half.h>
@@ -31,10 +32,29 @@ __attribute__((target("f16c"))) void to_half_f16c(const float* from, size_t stri
   for (size_t i = 0; i < n; ++i) to[i].setBits(_cvtss_sh(from[i * stride], _MM_FROUND_TO_NEAREST_INT));
 }
 
+const bool kHasF16c = __builtin_cpu_supports("f16c");
+
 void to_half(const float* from, size_t stride, Imath::half* to, size_t n) {
-  static const bool f16c = __builtin_cpu_supports("f16c");
-  if (f16c) return to_half_f16c(from, stride, to, n);
+  if (kHasF16c) return to_half_f16c(from, stride, to, n);
   for (size_t i = 0; i < n; ++i) to[i] = Imath::half(from[i * stride]);
+}
+
+// Four interleaved channels (an RGBA layer) at once: each pixel's four floats are read once.
+__attribute__((target("f16c"))) void rgba_to_half_f16c(const float* from, std::array<Imath::half*, 4> to, size_t n) {
+  for (size_t i = 0; i < n; ++i) {
+    alignas(8) uint16_t h[4];
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(h), _mm_cvtps_ph(_mm_loadu_ps(from + 4 * i), _MM_FROUND_TO_NEAREST_INT));
+    for (int c = 0; c < 4; ++c) to[size_t(c)][i].setBits(h[c]);
+  }
+}
+
+// Channels c..c+3 are one interleaved RGBA array: stride 4, consecutive starts, all HALF.
+bool rgba_at(const std::vector<ExrChannel>& channels, size_t c) {
+  if (!kHasF16c || c + 4 > channels.size()) return false;
+  for (size_t k = 0; k < 4; ++k)
+    if (channels[c + k].full_float || channels[c + k].stride != 4 || channels[c + k].first != channels[c].first + k)
+      return false;
+  return true;
 }
 
 }  // namespace
@@ -51,9 +71,9 @@ void write_exr(const std::filesystem::path& path, int width, int height, const s
     Imf::FrameBuffer frame;
     // The library writes a slice only in its channel's type: halves are rounded here, a channel at a time.
     const size_t n = size_t(width) * size_t(height);
-    std::vector<std::vector<Imath::half>> halves;
-    halves.reserve(channels.size());
-    for (const ExrChannel& c : channels) {
+    std::vector<std::vector<Imath::half>> halves(channels.size());
+    for (size_t i = 0; i < channels.size(); ++i) {
+      const ExrChannel& c = channels[i];
       header.channels().insert(c.name, Imf::Channel(c.full_float ? Imf::FLOAT : Imf::HALF));
       if (c.full_float) {
         const size_t x_stride = sizeof(float) * c.stride;
@@ -61,9 +81,21 @@ void write_exr(const std::filesystem::path& path, int width, int height, const s
                                         x_stride * size_t(width)));
         continue;
       }
-      std::vector<Imath::half>& h = halves.emplace_back(n);
-      parallel_for(n, size_t(1) << 16, [&](size_t b, size_t e) { to_half(c.first + b * c.stride, c.stride, h.data() + b, e - b); });
-      frame.insert(c.name, Imf::Slice(Imf::HALF, reinterpret_cast<char*>(h.data()), sizeof(Imath::half),
+      if (halves[i].empty()) {  // not yet converted with the RGBA layer it belongs to
+        if (rgba_at(channels, i)) {
+          std::array<Imath::half*, 4> to;
+          for (size_t k = 0; k < 4; ++k) halves[i + k].resize(n), to[k] = halves[i + k].data();
+          parallel_for(n, size_t(1) << 16, [&](size_t b, size_t e) {
+            std::array<Imath::half*, 4> at = to;
+            for (auto& p : at) p += b;
+            rgba_to_half_f16c(c.first + 4 * b, at, e - b);
+          });
+        } else {
+          halves[i].resize(n);
+          parallel_for(n, size_t(1) << 16, [&](size_t b, size_t e) { to_half(c.first + b * c.stride, c.stride, halves[i].data() + b, e - b); });
+        }
+      }
+      frame.insert(c.name, Imf::Slice(Imf::HALF, reinterpret_cast<char*>(halves[i].data()), sizeof(Imath::half),
                                       sizeof(Imath::half) * size_t(width)));
     }
     Imf::StdOSStream stream;

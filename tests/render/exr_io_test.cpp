@@ -43,6 +43,22 @@ TEST(ExrIo, HalfChannelsRoundToNearestAndFloatChannelsAreExact) {
   EXPECT_EQ(std::distance(fs::directory_iterator(path.parent_path()), fs::directory_iterator()), 1);
 }
 
+// An interleaved RGBA layer (converted four channels at a time) comes back channel by channel.
+TEST(ExrIo, InterleavedRgbaLayersComeBackChannelByChannel) {
+  const testing::TempDir temp("exr_io_rgba");
+  std::vector<float> rgba(5 * 3 * 4);
+  for (size_t i = 0; i < rgba.size(); ++i) rgba[i] = float(i) * 0.25f - 3.0f;  // exact in half
+  const fs::path path = temp.path / "rgba.exr";
+  std::vector<ExrChannel> channels;
+  for (int c = 0; c < 4; ++c) channels.push_back({std::string("L.") + "RGBA"[c], rgba.data() + c, 4});
+  write_exr(path, 5, 3, channels, {});
+  const ExrContents back = read_exr(path);
+  for (int c = 0; c < 4; ++c) {
+    const std::vector<float>& v = back.channels.at(std::string("L.") + "RGBA"[c]);
+    for (size_t p = 0; p < 15; ++p) ASSERT_EQ(v[p], rgba[4 * p + size_t(c)]) << "channel " << c << " pixel " << p;
+  }
+}
+
 TEST(ExrIo, ErrorsNameTheFile) {
   const testing::TempDir temp("exr_io_errors");
   const float v[1] = {1.0f};
