@@ -34,8 +34,20 @@ double ellipse_area(double R, double u0, double u1) {
   return F(u1) - F(u0);
 }
 
-bool swept_chord(const PathPiece& piece, double r2, const Vec3d& origin, const Vec3d& d, SweptChord& out) {
-  const Vec3d qa = piece.a - origin;
+EyePiece eye_piece(const PathPiece& piece, double r2, const Vec3d& origin) {
+  EyePiece e;
+  e.a = piece.a - origin, e.b = piece.b, e.mid = e.a + 0.5 * piece.b;
+  const double bound = std::sqrt(r2) + 0.5 * piece.b.norm();
+  e.r2 = r2, e.bound2 = bound * bound, e.w = piece.w;
+  return e;
+}
+
+bool swept_chord(const EyePiece& piece, const Vec3d& d, SweptChord& out) {
+  // Most rays of a streak's rectangle miss a piece: first the sphere around it.
+  const double along = piece.mid.dot(d);
+  if (piece.mid.squaredNorm() - along * along >= piece.bound2) return false;
+  const double r2 = piece.r2;
+  const Vec3d& qa = piece.a;
   const double tca = qa.dot(d), tcb = piece.b.dot(d);
   const Vec3d qp = qa - tca * d, bp = piece.b - tcb * d;  // across the ray
   const double C = qp.squaredNorm(), Bq = qp.dot(bp), A = bp.squaredNorm();

@@ -41,8 +41,19 @@ struct SweptChord {
   uint32_t type = 0, particle = 0;
 };
 
-// The piece against the ray from `origin` along unit `d`; false when it never touches the ray.
-bool swept_chord(const PathPiece& piece, double r2, const Vec3d& origin, const Vec3d& d, SweptChord& out);
+// A piece as seen from the eye, worked out once for all the rays of its rectangle.
+struct EyePiece {
+  Vec3d a, b, mid;        // start and middle relative to the eye, displacement
+  double r2 = 0, bound2 = 0;  // radius^2; the squared radius of the sphere around the whole piece
+  double w = 1;
+};
+EyePiece eye_piece(const PathPiece& piece, double r2, const Vec3d& origin);
+
+// The piece against the ray from the eye along unit `d`; false when it never touches the ray.
+bool swept_chord(const EyePiece& piece, const Vec3d& d, SweptChord& out);
+inline bool swept_chord(const PathPiece& piece, double r2, const Vec3d& origin, const Vec3d& d, SweptChord& out) {
+  return swept_chord(eye_piece(piece, r2, origin), d, out);
+}
 
 // int_{u0}^{u1} 2 sqrt(R^2 - u^2) du for -R <= u0 <= u1 <= R.
 double ellipse_area(double R, double u0, double u1);

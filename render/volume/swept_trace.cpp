@@ -111,10 +111,12 @@ size_t trace_swept_tile(const TileRays& t, const SweptBins& bins, DiffuseView fr
   for (size_t i = 0; i < rays; ++i) s.chords[i].clear();
   const size_t tile = size_t(t.y0 / SweptBins::kTile) * size_t(bins.tiles_x()) + size_t(t.x0 / SweptBins::kTile);
   std::array<PathPiece, kSprayPieces> pieces;
+  std::array<EyePiece, kSprayPieces> seen;
   for (const SweptBins::Entry& e : bins.tile(tile)) {
     const DiffuseType type = frame.types[e.particle];
     const int n = path_pieces(frame.positions[e.particle].cast<double>(), motion.velocities[e.particle].cast<double>(), type,
                               motion.open, motion.close, motion.gravity, pieces);
+    for (int k = 0; k < n; ++k) seen[size_t(k)] = eye_piece(pieces[size_t(k)], r2[size_t(type)], origin);
     const int ex0 = std::max(int(e.x0), t.x0) - t.x0, ex1 = std::min(int(e.x1), t.x0 + t.w - 1) - t.x0;
     const int ey0 = std::max(int(e.y0), t.y0) - t.y0, ey1 = std::min(int(e.y1), t.y0 + t.h - 1) - t.y0;
     for (int y = ey0; y <= ey1; ++y)
@@ -123,7 +125,7 @@ size_t trace_swept_tile(const TileRays& t, const SweptBins& bins, DiffuseView fr
         if (ray.misses()) continue;
         for (int k = 0; k < n; ++k) {
           SweptChord c;
-          if (!swept_chord(pieces[size_t(k)], r2[size_t(type)], origin, ray.direction, c)) continue;
+          if (!swept_chord(seen[size_t(k)], ray.direction, c)) continue;
           c.type = uint32_t(type), c.particle = e.particle;
           s.chords[ri].push_back(c);
         }
