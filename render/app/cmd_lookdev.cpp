@@ -98,6 +98,7 @@ int lookdev(const cli::ParsedArgs& args) {
     const int tile_width = asked_tile_width.value_or(std::min(full_width, 480));
     setup.render.height = std::max(1, int(std::lround(double(setup.render.height) * tile_width / full_width)));
     setup.render.width = tile_width;
+    setup.render.exr = false;  // a contact sheet: no layers to take apart
     SceneRender scene = scene_render(setup.sim, setup.out_root);
     if (c == 0) print_input_warnings(scene);
     PreparedRender prepared = prepare_render(scene.scene, setup.render);

@@ -86,6 +86,7 @@ StudyResult study_render(const StudyContext& c) {
     VolumeSettings v = settings.volume;
     v.integrator = integrator;
     v.march_step = step;
+    v.shutter = 0.0f;  // Eq. 9's integrators compared on the still frame
     // The fastest of `repeats` runs: the machine may be shared, and the first run pays page faults.
     VolumeImage image;
     ms = INFINITY;
