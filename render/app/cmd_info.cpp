@@ -10,6 +10,7 @@
 
 #include "render/app/commands.h"
 #include "render/app/output_folder_info.h"
+#include "render/frame/frame_exr.h"
 #include "sim/core/error.h"
 #include "sim/core/messages.h"
 #include "sim/diffuse/narrow_band.h"
@@ -125,6 +126,10 @@ int info(const cli::ParsedArgs& args) {
                               outputs->warnings > 1 ? "s" : "", " (listed above)"));
       continue;
     }
+    if (fs::path(path).extension() == ".exr") {  // a rendered frame's layers
+      std::printf("%s\n", describe_frame_exr(path).c_str());
+      continue;
+    }
     std::printf("%s%s\n", describe_particle_file(path).c_str(), interior_line(path).c_str());
   }
   return 0;
@@ -139,6 +144,7 @@ Command cmd_info() {
   spec.summary = "what a particle file or cache holds: format, counts, attributes, bounds";
   spec.notes = {"formats: .bgeo .bgeo.gz .bgeo.sc .bhclassic .vtk .vtu .vtp .ply .vdb, spume caches .spf .spd",
                 "a .vdb: its grids, point attributes and codecs, and the up axis and velocity units spume takes",
+                "a rendered .exr frame: its layers, how much of the image each covers, Z, motion, provenance",
                 "a scene's output folder (OUT/<scene>): its finished caches and the warnings given when they were made",
                 "another directory is refused with a list of the particle files in it"};
   spec.options = {cli::quiet_option()};

@@ -26,6 +26,11 @@ void write_frame_exr(const std::filesystem::path& path, const FrameLayers& frame
 // The `spume/record` of a frame's EXR; nullopt for a missing or unreadable file.
 std::optional<std::string> read_frame_exr_record(const std::filesystem::path& path);
 
+// What an EXR frame holds, for `spume info`: size, compression, channels by layer with how much of
+// the image each layer covers, the range of Z, the largest motion, and where spume's frames came from.
+// Throws Error naming the file when it is not a readable OpenEXR file.
+std::string describe_frame_exr(const std::filesystem::path& path);
+
 // spume's version, as the EXR header gives it.
 const char* spume_version();
 

@@ -71,6 +71,10 @@ TEST_F(ProductionFrames, OiiotoolListsTheLayersAndRebuildsBeautyFromThemInTheHea
   const ExrContents frame8 = read_exr(exr);
   EXPECT_EQ(frame8.strings.at("spume/record"), *png_record);
   EXPECT_EQ(frame8.strings.at("spume/scene"), "blocks");
+  const CommandResult described = run_spume("info " + exr.string());
+  EXPECT_EQ(described.status, 0) << described.output;
+  for (const char* line : {"OpenEXR, 120x80, zip, 33 channels", "spray: A B G R; covers", "spume/scene: blocks"})
+    EXPECT_NE(described.output.find(line), std::string::npos) << line << " missing from:\n" << described.output;
 
   // oiiotool: the diffuse layers added, then over water, over opaque, over sky.
   auto layer = [&](const char* l) {
