@@ -1,5 +1,6 @@
 #include "sim/io/io_bytes.h"
 
+#include <libdeflate.h>
 #include <zlib.h>
 
 #include <algorithm>
@@ -201,31 +202,17 @@ void PrefixReader::inflate_to(size_t n) {
 }
 
 std::string gzip_compress(std::string_view data) {
-  z_stream zs{};
-  // Particle floats barely compress past level 1 (measured: 2M diffuse points, 62.7 MB at level 1
-  // vs 64.1 MB at level 6), and level 1 is about twice as fast.
-  if (deflateInit2(&zs, Z_BEST_SPEED, Z_DEFLATED, 16 + MAX_WBITS, 8, Z_DEFAULT_STRATEGY) != Z_OK)
-    fail("gzip: cannot initialise zlib");
+  // libdeflate rather than zlib: the same format about twice as fast (the whole buffer at once).
+  // Particle floats barely compress past level 1 (measured with zlib: 2M diffuse points, 62.7 MB at
+  // level 1 vs 64.1 MB at level 6).
+  libdeflate_compressor* compressor = libdeflate_alloc_compressor(1);
+  if (!compressor) fail("gzip: cannot allocate a compressor");
   std::string out;
-  out.resize(deflateBound(&zs, uLong(data.size())) + 64);
-  size_t in_pos = 0, out_pos = 0;
-  int rc = Z_OK;
-  do {
-    const size_t in_len = std::min<size_t>(data.size() - in_pos, 1u << 30);
-    zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data() + in_pos));
-    zs.avail_in = uInt(in_len);
-    const bool last = in_pos + in_len == data.size();
-    if (out.size() - out_pos < (1u << 16)) out.resize(out.size() * 2 + (1u << 16));
-    zs.next_out = reinterpret_cast<Bytef*>(out.data() + out_pos);
-    const size_t out_len = std::min<size_t>(out.size() - out_pos, 1u << 30);
-    zs.avail_out = uInt(out_len);
-    rc = deflate(&zs, last ? Z_FINISH : Z_NO_FLUSH);
-    in_pos += in_len - zs.avail_in;
-    out_pos += out_len - zs.avail_out;
-  } while (rc == Z_OK || rc == Z_BUF_ERROR);
-  deflateEnd(&zs);
-  if (rc != Z_STREAM_END) fail("gzip: compression failed (zlib error ", rc, ")");
-  out.resize(out_pos);
+  out.resize(libdeflate_gzip_compress_bound(compressor, data.size()));
+  const size_t written = libdeflate_gzip_compress(compressor, data.data(), data.size(), out.data(), out.size());
+  libdeflate_free_compressor(compressor);
+  if (written == 0) fail("gzip: compression of ", data.size(), " bytes failed");
+  out.resize(written);
   return out;
 }
 
