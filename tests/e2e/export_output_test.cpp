@@ -18,6 +18,7 @@
 
 #include "sim/io/bgeo.h"
 #include "sim/io/spume_cache.h"
+#include "tests/support/blocks_scene.h"
 #include "tests/support/files.h"
 #include "tests/support/run_command.h"
 #include "tests/support/run_spume.h"
@@ -71,21 +72,10 @@ std::map<uint64_t, Ages> vdb_ages(const fs::path& path) {
   return ages;
 }
 
-// Eight BGEO frames of two blocks of water thrown at each other in a tank (as in provenance_test).
+// The blocks scene of tests/support/blocks_scene.h (as in provenance_test).
 class Exports : public ::testing::Test {
  protected:
-  void SetUp() override {
-    fs::create_directories(dir / "cache");
-    for (int k = 1; k <= 8; ++k)
-      write_bgeo(dir / "cache" / ("fluid_" + std::to_string(k) + ".bgeo"),
-                 testing::blocks_closing_in(k, 0.16f, 0.5f, Vec3f(2.0f, 1, 0)));
-    std::ofstream(dir / "scene.json") << R"({
-      "name": "blocks",
-      "fluid": {"files": "cache/fluid_%d.bgeo", "radius": 0.02},
-      "solids": [{"type": "tank", "min": [-0.1, -0.02, -0.1], "max": [0.6, 0.6, 0.3]}],
-      "diffuse": {"k_ta": 2000, "k_wc": 2000}
-    })";
-  }
+  void SetUp() override { testing::write_blocks_scene(dir); }
   std::string args(const std::string& more = "", const std::string& out_dir = "out") const {
     return (dir / "scene.json").string() + " --quiet --out " + (dir / out_dir).string() + " " + more;
   }

@@ -12,11 +12,10 @@
 
 #include "render/image/exr_io.h"
 #include "render/image/png_io.h"
-#include "sim/io/bgeo.h"
 #include "tests/support/run_command.h"
 #include "tests/support/run_spume.h"
 #include "tests/support/temp_dir.h"
-#include "tests/support/test_fluids.h"
+#include "tests/support/blocks_scene.h"
 
 namespace spume {
 namespace {
@@ -25,22 +24,10 @@ namespace fs = std::filesystem;
 using testing::CommandResult;
 using testing::run_spume;
 
-// Eight BGEO frames of two blocks of water thrown at each other in a tank: spray, foam and bubbles.
+// The blocks scene (spray, foam and bubbles), drawn small.
 class ProductionFrames : public ::testing::Test {
  protected:
-  void SetUp() override {
-    fs::create_directories(dir / "cache");
-    for (int k = 1; k <= 8; ++k)
-      write_bgeo(dir / "cache" / ("fluid_" + std::to_string(k) + ".bgeo"),
-                 testing::blocks_closing_in(k, 0.16f, 0.5f, Vec3f(2.0f, 1, 0)));
-    std::ofstream(dir / "scene.json") << R"({
-      "name": "blocks",
-      "fluid": {"files": "cache/fluid_%d.bgeo", "radius": 0.02},
-      "solids": [{"type": "tank", "min": [-0.1, -0.02, -0.1], "max": [0.6, 0.6, 0.3]}],
-      "diffuse": {"k_ta": 2000, "k_wc": 2000},
-      "render": {"resolution": [120, 80], "alpha": 400}
-    })";
-  }
+  void SetUp() override { testing::write_blocks_scene(dir, R"({"resolution": [120, 80], "alpha": 400})"); }
   std::string args(const std::string& more = "", const std::string& out_dir = "out") const {
     return (dir / "scene.json").string() + " --out " + (dir / out_dir).string() + " " + more;
   }
