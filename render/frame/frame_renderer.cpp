@@ -8,7 +8,6 @@
 #include "sim/core/stopwatch.h"
 #include "render/surface/reconstruct.h"
 #include "render/volume/composite.h"
-#include "render/frame/motion_vectors.h"
 #include "render/volume/volume_pass.h"
 
 namespace spume {
@@ -37,6 +36,21 @@ Camera FrameRenderer::camera_at_time(double time) const {
   Camera camera = camera_at(settings_.camera, time, settings_.width, settings_.height);
   camera.up = settings_.camera_up;
   return camera;
+}
+
+MotionScene FrameRenderer::motion_scene(const FrameInputs& in, const Camera& camera) const {
+  MotionScene m;
+  // The scene's frame interval; a caller that sets none (a test, a single frame) gets 25 fps's.
+  const double dt = settings_.volume.frame_seconds > 0.0 ? settings_.volume.frame_seconds : 1.0 / 25.0;
+  m.previous = camera_at_time(in.time - dt), m.now = camera, m.next = camera_at_time(in.time + dt);
+  m.frame_seconds = dt;
+  m.fluid_positions = in.fluid, m.fluid_velocities = in.fluid_velocities;
+  // 2.5 r: the few particles nearest a surface point (~8), a quarter of the kernel's neighbours to visit.
+  m.fluid_support = 2.5f * settings_.surface.particle_radius;
+  m.solids = in.solid_set;
+  m.diffuse = in.diffuse, m.diffuse_velocities = in.diffuse_velocities;
+  for (int k = 0; k < kDiffuseTypeCount; ++k) m.radius[size_t(k)] = settings_.volume.look[size_t(k)].radius;
+  return m;
 }
 
 RenderedFrame FrameRenderer::render_frame(const FrameInputs& in, FrameReport* report) {
@@ -101,17 +115,7 @@ RenderedFrame FrameRenderer::render_frame(const FrameInputs& in, FrameReport* re
     std::array<bool, kDiffuseTypeCount> drawn{};
     for (int k = 0; k < kDiffuseTypeCount; ++k) drawn[size_t(k)] = settings_.volume.drawn(DiffuseType(k));
     out.layers = frame_layers(colour, background, diffuse ? &*diffuse : nullptr, drawn, camera);
-    MotionScene motion;
-    const double dt = settings_.volume.frame_seconds > 0.0 ? settings_.volume.frame_seconds : 1.0 / 25.0;
-    motion.previous = camera_at_time(in.time - dt), motion.now = camera, motion.next = camera_at_time(in.time + dt);
-    motion.frame_seconds = dt;
-    motion.fluid_positions = in.fluid, motion.fluid_velocities = in.fluid_velocities;
-    // 2.5 r: the few particles nearest a surface point (~8), a quarter of the kernel's neighbours to visit.
-    motion.fluid_support = 2.5f * settings_.surface.particle_radius;
-    motion.solids = in.solid_set;
-    motion.diffuse = in.diffuse, motion.diffuse_velocities = in.diffuse_velocities;
-    for (int k = 0; k < kDiffuseTypeCount; ++k) motion.radius[size_t(k)] = settings_.volume.look[size_t(k)].radius;
-    out.layers->motion = motion_vectors(motion, background, diffuse ? &*diffuse : nullptr);
+    out.layers->motion = motion_vectors(motion_scene(in, camera), background, diffuse ? &*diffuse : nullptr);
     r.layers_seconds = t0.seconds();
   }
   out.image = to_srgb8(colour);

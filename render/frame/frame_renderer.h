@@ -4,13 +4,15 @@
 // C_p = (1 - L) C_d + L C_b. Only what the frame needs runs: no reconstruction when the surface is
 // not drawn or there is no fluid, no GL context when nothing shows geometry, no volume pass when no
 // drawn diffuse particle exists. The volume pass runs on a thread of its own beside the surface pass
-// (one after the other with --threads 1).
+// (one after the other with --threads 1). With RenderSettings::exr, the frame is also taken apart into
+// the layers and motion vectors of its EXR (frame_layers.h, motion_vectors.h).
 #include <optional>
 #include <span>
 #include <vector>
 
 #include "render/camera/camera.h"
 #include "render/frame/frame_layers.h"
+#include "render/frame/motion_vectors.h"
 #include "render/gl/surface_pass.h"
 #include "render/image/image.h"
 #include "render/frame/render_settings.h"
@@ -66,6 +68,8 @@ class FrameRenderer {
   Camera camera_at_time(double time) const;
 
  private:
+  MotionScene motion_scene(const FrameInputs& in, const Camera& camera) const;  // for the EXR's motion vectors
+
   RenderSettings settings_;
   SurfacePass surface_pass_;
 };
