@@ -26,6 +26,25 @@ PathBound path_bound(const Vec3f& c, const Vec3f& v, DiffuseType type, float rad
   return {Vec3f((0.5 * (a + b)).cast<float>()), float(radius + 0.5 * (b - a).norm() + sag) * (1.0f + 1e-5f)};
 }
 
+// A tighter rectangle than the bounding sphere's: the path's pieces are straight, and a straight piece's
+// swept sphere lies in the hull of its end spheres, whose projection lies in the box around theirs
+// (both in front of the camera). False, leaving the rectangle as it was, when an end is not seen
+// (behind the camera or off the image: the path may still cross the view between its ends).
+bool tighten(const SphereProjector& projector, const Vec3f& c, const Vec3f& v, DiffuseType type, float radius,
+             const DiffuseMotion& m, int& x0, int& y0, int& x1, int& y1) {
+  std::array<PathPiece, kSprayPieces> pieces;
+  const int n = path_pieces(c.cast<double>(), v.cast<double>(), type, m.open, m.close, m.gravity, pieces);
+  int bx0 = INT32_MAX, by0 = INT32_MAX, bx1 = -1, by1 = -1;
+  for (int k = 0; k <= n; ++k) {
+    const Vec3d end = k < n ? pieces[size_t(k)].a : pieces[size_t(n - 1)].a + pieces[size_t(n - 1)].b;
+    int ex0, ey0, ex1, ey1;
+    if (!projector.pixel_rect(end.cast<float>(), radius * (1.0f + 1e-5f), ex0, ey0, ex1, ey1)) return false;
+    bx0 = std::min(bx0, ex0), by0 = std::min(by0, ey0), bx1 = std::max(bx1, ex1), by1 = std::max(by1, ey1);
+  }
+  x0 = std::max(x0, bx0), y0 = std::max(y0, by0), x1 = std::min(x1, bx1), y1 = std::min(y1, by1);
+  return true;
+}
+
 }  // namespace
 
 SweptBins::SweptBins(DiffuseView frame, const DiffuseMotion& motion, const std::array<float, kDiffuseTypeCount>& radius,
@@ -62,9 +81,14 @@ SweptBins::SweptBins(DiffuseView frame, const DiffuseMotion& motion, const std::
       }
       projector.pixel_rects(centres, radii, count, r);
       for (size_t k = 0; k < count; ++k) {
-        if (r.x0[k] > r.x1[k]) continue;
-        seen[first + k] = 1;
-        rect[first + k] = {uint16_t(r.x0[k]), uint16_t(r.y0[k]), uint16_t(r.x1[k]), uint16_t(r.y1[k])};
+        int x0 = r.x0[k], y0 = r.y0[k], x1 = r.x1[k], y1 = r.y1[k];
+        if (x0 > x1) continue;
+        const size_t i = first + k;
+        if (x1 - x0 > 4 || y1 - y0 > 4)  // a streak: the sphere around it holds much it never covers
+          tighten(projector, frame.positions[i], motion.velocities[i], frame.types[i], radius[size_t(frame.types[i])],
+                  motion, x0, y0, x1, y1);
+        seen[i] = 1;
+        rect[i] = {uint16_t(x0), uint16_t(y0), uint16_t(x1), uint16_t(y1)};
       }
     }
   });
