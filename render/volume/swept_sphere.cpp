@@ -39,18 +39,19 @@ EyePiece eye_piece(const PathPiece& piece, double r2, const Vec3d& origin) {
   e.a = piece.a - origin, e.b = piece.b, e.mid = e.a + 0.5 * piece.b;
   const double bound = std::sqrt(r2) + 0.5 * piece.b.norm();
   e.r2 = r2, e.bound2 = bound * bound, e.w = piece.w;
+  e.aa = e.a.squaredNorm(), e.ab = e.a.dot(e.b), e.bb = e.b.squaredNorm(), e.mid2 = e.mid.squaredNorm();
   return e;
 }
 
 bool swept_chord(const EyePiece& piece, const Vec3d& d, SweptChord& out) {
   // Most rays of a streak's rectangle miss a piece: first the sphere around it.
   const double along = piece.mid.dot(d);
-  if (piece.mid.squaredNorm() - along * along >= piece.bound2) return false;
+  if (piece.mid2 - along * along >= piece.bound2) return false;
   const double r2 = piece.r2;
-  const Vec3d& qa = piece.a;
-  const double tca = qa.dot(d), tcb = piece.b.dot(d);
-  const Vec3d qp = qa - tca * d, bp = piece.b - tcb * d;  // across the ray
-  const double C = qp.squaredNorm(), Bq = qp.dot(bp), A = bp.squaredNorm();
+  // Along the ray and across it (squared lengths and products of the parts across, from the piece's
+  // own, as the still integrator's |oc|^2 - tc^2).
+  const double tca = piece.a.dot(d), tcb = piece.b.dot(d);
+  const double C = piece.aa - tca * tca, Bq = piece.ab - tca * tcb, A = std::max(0.0, piece.bb - tcb * tcb);
   // The nearest the centre comes to the ray during the piece.
   const double tau = A > 0.0 ? std::clamp(-Bq / A, 0.0, 1.0) : 0.0;
   if (C + tau * (2.0 * Bq + A * tau) >= r2) return false;

@@ -46,6 +46,7 @@ struct EyePiece {
   Vec3d a, b, mid;        // start and middle relative to the eye, displacement
   double r2 = 0, bound2 = 0;  // radius^2; the squared radius of the sphere around the whole piece
   double w = 1;
+  double aa = 0, ab = 0, bb = 0, mid2 = 0;  // |a|^2, a.b, |b|^2, |mid|^2
 };
 EyePiece eye_piece(const PathPiece& piece, double r2, const Vec3d& origin);
 
