@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 
+#include "render/surface/sparse_bins.h"
 #include "render/volume/swept_trace.h"
 #include "sim/core/parallel.h"
 
@@ -53,28 +54,22 @@ struct Pinholes {
   }
 };
 
-// The fluid's velocity near a point: particles binned in cells of the kernel support.
+// The fluid's velocity near a point: particles binned (the surface reconstruction's index) in cells of
+// the support h, so the particles within h of a point lie in its cell's 27.
 class FluidVelocity {
  public:
-  FluidVelocity(std::span<const Vec3f> x, std::span<const Vec3f> v, float h) : x_(x), v_(v), h_(h) {
+  FluidVelocity(std::span<const Vec3f> x, std::span<const Vec3f> v, float h) : v_(v), h_(h) {
     if (v.empty() || x.size() != v.size() || !(h > 0.0f)) return;
     Aabb box;
     for (const Vec3f& p : x) box.extend(p);
-    lo_ = box.min;
-    for (int a = 0; a < 3; ++a) n_[a] = std::max(1, int(std::ceil((box.max[a] - box.min[a]) / h)) + 1);
-    if (double(n_[0]) * n_[1] * n_[2] > 6.4e7) return;  // a scattered cache: too many cells, leave the water still
-    start_.assign(size_t(n_[0]) * n_[1] * n_[2] + 1, 0);
-    for (const Vec3f& p : x) ++start_[cell(p) + 1];
-    for (size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
-    index_.resize(x.size());
-    std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
-    for (size_t i = 0; i < x.size(); ++i) index_[fill[cell(x[i])]++] = uint32_t(i);
+    bins_.build(x, box.min, h);
+    on_ = true;
   }
 
   Vec3f at(const Vec3f& p) const {
-    if (start_.empty()) return Vec3f::Zero();
+    if (!on_) return Vec3f::Zero();
     int c[3];
-    for (int a = 0; a < 3; ++a) c[a] = int(std::floor((p[a] - lo_[a]) / h_));
+    for (int a = 0; a < 3; ++a) c[a] = int(std::floor((p[a] - bins_.origin()[a]) / h_));
     const float h2 = h_ * h_;
     double wsum = 0.0;
     Vec3d vsum = Vec3d::Zero();
@@ -82,30 +77,26 @@ class FluidVelocity {
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
           const int i = c[0] + dx, j = c[1] + dy, k = c[2] + dz;
-          if (i < 0 || j < 0 || k < 0 || i >= n_[0] || j >= n_[1] || k >= n_[2]) continue;
-          const size_t cell = (size_t(k) * n_[1] + size_t(j)) * n_[0] + size_t(i);
-          for (uint32_t e = start_[cell]; e < start_[cell + 1]; ++e) {
-            const float d2 = (x_[index_[e]] - p).squaredNorm();
+          if (std::min({i, j, k}) < 0 || std::max({i, j, k}) > SparseBins::kMaxCoord) continue;
+          const int64_t cell = bins_.find(i, j, k);
+          if (cell == SparseBins::kMissing) continue;
+          const std::span<const Vec3f> points = bins_.points(size_t(cell));
+          const std::span<const uint32_t> index = bins_.indices(size_t(cell));
+          for (size_t e = 0; e < points.size(); ++e) {
+            const float d2 = (points[e] - p).squaredNorm();
             if (d2 >= h2) continue;
             const double q = 1.0 - double(d2 / h2), w = q * q * q;
-            wsum += w, vsum += w * v_[index_[e]].cast<double>();
+            wsum += w, vsum += w * v_[index[e]].cast<double>();
           }
         }
     return wsum > 0.0 ? Vec3f((vsum / wsum).cast<float>()) : Vec3f::Zero();
   }
 
  private:
-  size_t cell(const Vec3f& p) const {
-    size_t c[3];
-    for (int a = 0; a < 3; ++a) c[a] = size_t(std::clamp(int((p[a] - lo_[a]) / h_), 0, n_[a] - 1));
-    return (c[2] * size_t(n_[1]) + c[1]) * size_t(n_[0]) + c[0];
-  }
-
-  std::span<const Vec3f> x_, v_;
+  std::span<const Vec3f> v_;
   float h_;
-  Vec3f lo_ = Vec3f::Zero();
-  int n_[3] = {0, 0, 0};
-  std::vector<uint32_t> start_, index_;
+  SparseBins bins_;
+  bool on_ = false;
 };
 
 // Distance from p to a solid's surface (a tank's: its walls and floor).
