@@ -12,6 +12,7 @@
 #include "sim/core/stopwatch.h"
 #include "render/frame/frame_exr.h"
 #include "render/image/png_io.h"
+#include "sim/core/messages.h"
 #include "sim/io/cache_layout.h"
 #include "sim/io/file_identity.h"
 #include "sim/io/frame_pattern.h"
@@ -226,6 +227,9 @@ RenderStageSummary run_render_stage(PreparedRender& prepared, const nlohmann::js
       }
       const Stopwatch frame_start;
       TakenFrame taken = loads.take(f);  // its errors name the frame
+      if (settings.exr && taken.frame.fluid.size() > 0 && !taken.frame.fluid.has_velocities())
+        messages::warning(str(scene.fluid_pattern, ": the fluid files hold no velocities, so the EXR frames' "
+                              "motion vectors show the water still"));
       size_t next = k + 1;
       while (next < frames.size() && !needs_drawing(next)) ++next;
       if (next < frames.size()) loads.start(frames[next]);
@@ -279,11 +283,12 @@ RenderStageSummary run_render_stage(PreparedRender& prepared, const nlohmann::js
     if (std::binary_search(frames.begin(), frames.end(), f)) continue;
     const std::filesystem::path path = expand_frame_pattern(pattern, f);
     if (!std::filesystem::exists(path)) continue;
+    const std::string record = frame_record(prepared, render_keys, f);
+    const std::filesystem::path exr = expand_frame_pattern(exr_pattern, f);
     const bool current =
         (!settings.draws_diffuse() || std::filesystem::exists(diffuse_cache_path(scene.scene_out, f))) &&
-        read_png_record(path) == frame_record(prepared, render_keys, f) &&
-        (!settings.exr || !std::filesystem::exists(expand_frame_pattern(exr_pattern, f)) ||
-         read_frame_exr_record(expand_frame_pattern(exr_pattern, f)) == frame_record(prepared, render_keys, f));
+        read_png_record(path) == record &&
+        (!settings.exr || !std::filesystem::exists(exr) || read_frame_exr_record(exr) == record);
     summary.stale_elsewhere += !current;
   }
   const auto per_frame = [&](double seconds) {

@@ -15,6 +15,7 @@
 #include "tests/support/run_command.h"
 #include "tests/support/run_spume.h"
 #include "tests/support/temp_dir.h"
+#include "sim/io/bgeo.h"
 #include "tests/support/blocks_scene.h"
 
 namespace spume {
@@ -128,6 +129,23 @@ TEST_F(ProductionFrames, ThePixelsDoNotDependOnTheThreadCount) {
   const ExrContents one = read_exr(frame(8, ".exr", "one")), two = read_exr(frame(8, ".exr", "two"));
   ASSERT_EQ(one.channels.size(), 33u) << "beauty, Z, 6 layers, 4 motion channels";
   for (const auto& [name, values] : one.channels) EXPECT_EQ(values, two.channels.at(name)) << name;
+}
+
+// A cache without velocities gives the water no motion vectors; the run says so rather than writing
+// still water as if it had measured it.
+TEST_F(ProductionFrames, FluidFilesWithoutVelocitiesAreSaidToLeaveTheWaterStill) {
+  for (int k = 1; k <= 8; ++k) {
+    FluidFrame f = testing::blocks_closing_in(k, 0.16f, 0.5f, Vec3f(2.0f, 1, 0));
+    f.velocities.clear();
+    write_bgeo(dir / "cache" / ("fluid_" + std::to_string(k) + ".bgeo"), f);
+  }
+  CommandResult r = run_spume("run " + args("--quiet --frames 8"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.output.find("motion vectors"), std::string::npos) << "no EXR asked for: nothing to say";
+  r = run_spume("render " + args("--quiet --frames 8 --exr"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("hold no velocities, so the EXR frames' motion vectors show the water still"),
+            std::string::npos) << r.output;
 }
 
 std::string file_bytes(const fs::path& path) {
