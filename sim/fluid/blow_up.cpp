@@ -91,15 +91,45 @@ BlowUpLimits blow_up_limits(const FluidSolverParams& params, const std::vector<F
     l.height = hi - lo;
   }
   l.solid_speed = fastest_solid_speed(solids);
-  l.reference_speed = std::max({std::sqrt(2.0 * l.gravity * l.height), 2.0 * l.solid_speed, 1.0});
+  // A body denser than the water brings more energy per volume down the same height: a fluid
+  // particle handed all of it moves at sqrt(2 |g| H rho_body / rho0).
+  double densest = 1.0;
+  for (const Solid& s : solids.solids())
+    if (s.dynamics.enabled) {
+      const double mass = s.dynamics.mass > 0.0f ? double(s.dynamics.mass) : double(s.dynamics.density) * s.volume();
+      densest = std::max(densest, mass / (double(s.volume()) * double(params.rest_density)));
+    }
+  l.body_density_ratio = densest;
+  l.reference_speed = std::max({std::sqrt(2.0 * l.gravity * l.height * densest), 2.0 * l.solid_speed, 1.0});
   l.max_fall_speed = kSpeedFactor * l.reference_speed;
   l.max_density_error = std::max(kMaxDensityError, 10.0 * double(params.density_tolerance));
+  l.closed = !solids.any_dynamic() && std::none_of(solids.solids().begin(), solids.solids().end(),
+                                                   [](const Solid& s) { return s.motion.moving(); });
   return l;
 }
 
 double fall_speed(const BlowUpLimits& limits, const Vec3f& x, const Vec3f& v) {
   const double z = double(limits.up.dot(x)) - limits.bottom;
   return std::sqrt(std::max(0.0, double(v.squaredNorm()) + 2.0 * limits.gravity * z));
+}
+
+double mean_energy(const BlowUpLimits& limits, const Particles& p) {
+  if (p.size() == 0) return 0.0;
+  const double sum = chunked_sum(p.size(), [&](size_t b, size_t e) {
+    double s = 0.0;
+    for (size_t i = b; i < e; ++i) {
+      const double z = double(limits.up.dot(p.x[i])) - limits.bottom;
+      s += 0.5 * double(p.v[i].squaredNorm()) + limits.gravity * z;
+    }
+    return s;
+  });
+  return sum / double(p.size());
+}
+
+void set_start_energy(BlowUpLimits& limits, const Particles& p) {
+  if (!limits.closed) return;
+  limits.start_energy = mean_energy(limits, p);
+  limits.max_energy = limits.start_energy + kEnergySlack * limits.gravity * limits.height;
 }
 
 FastestParticle fastest_particle(const BlowUpLimits& limits, const Particles& p) {
@@ -127,29 +157,42 @@ void check_blow_up(const BlowUpLimits& limits, const FluidSolverParams& params, 
   // Formatted only when the run has blown up: this check runs after every step.
   auto advice = [&] {
     std::string a = str("; the solver is unstable at these settings: lower fluid.solver.max_dt (now ", params.max_dt,
-                        " s) or fluid.solver.cfl (now ", params.cfl, ")");
-    const double deep_water_dt =
-        kDeepWaterStepFactor * std::sqrt(2.0 * double(params.particle_radius) / std::max(limits.gravity, 1e-30));
-    if (limits.gravity > 0.0 && (params.max_dt > deep_water_dt || !params.extrapolate_wall_pressure))
-      a += str("; deep water (tens of particle layers) has run healthy at max_dt <= ", kDeepWaterStepFactor,
-               " sqrt(2 r / |g|) = ", deep_water_dt,
-               " s with fluid.solver.wall_pressure = extrapolated (README: Deep fluid against walls)");
+                        " s), fluid.solver.depth_cfl (now ", params.depth_cfl, ") or fluid.solver.cfl (now ",
+                        params.cfl, ")");
+    if (!params.extrapolate_wall_pressure)
+      a += "; deep water settles calmer with fluid.solver.wall_pressure = extrapolated (README: Deep water)";
     return a;
   };
   if (!(density_error <= limits.max_density_error))
-    fail("fluid solver blew up at t = ", t, " s: the average compression after the density solve is ",
-         100.0 * density_error, "%, above the bound ", 100.0 * limits.max_density_error,
-         "% (a converged solve leaves fluid.solver.density_tolerance, ", 100.0 * params.density_tolerance, "%)",
-         advice());
+    throw BlowUp(str("fluid solver blew up at t = ", t, " s: the average compression after the density solve is ",
+                     100.0 * density_error, "%, above the bound ", 100.0 * limits.max_density_error,
+                     "% (a converged solve leaves fluid.solver.density_tolerance, ",
+                     100.0 * params.density_tolerance, "%)"),
+                 advice());
+  if (limits.closed && limits.gravity > 0.0) {
+    const double e = mean_energy(limits, p);
+    if (!(e <= limits.max_energy))
+      throw BlowUp(str("fluid solver blew up at t = ", t, " s: the fluid's mechanical energy grew from ",
+                       limits.start_energy, " to ", e, " J/kg, more than ", kEnergySlack, " x |g| H = ",
+                       kEnergySlack * limits.gravity * limits.height,
+                       " J/kg above its start, with nothing in the scene to drive it"),
+                   advice());
+  }
   const FastestParticle f = fastest_particle(limits, p);
   if (f.fall_speed > limits.max_fall_speed) {
     const size_t i = f.index;
-    fail("fluid solver blew up at t = ", t, " s: particle ", p.id[i], " moves at ", p.v[i].norm(), " m/s at ",
-         limits.up.dot(p.x[i]) - limits.bottom, " m above the scene's bottom, so it would fall to the bottom at ",
-         f.fall_speed, " m/s, above the bound ", limits.max_fall_speed, " m/s = ", kSpeedFactor,
-         " x max(sqrt(2 |g| H) = ", std::sqrt(2.0 * limits.gravity * limits.height), " m/s with H = ", limits.height,
-         " m the height of the box around the fluid and solids, 2 x the fastest solid's ", limits.solid_speed,
-         " m/s, 1 m/s)", advice());
+    const std::string denser =
+        limits.body_density_ratio > 1.0
+            ? str(" (times sqrt(", limits.body_density_ratio, "), the densest body over the water)")
+            : std::string();
+    throw BlowUp(str("fluid solver blew up at t = ", t, " s: particle ", p.id[i], " moves at ", p.v[i].norm(),
+                     " m/s at ", limits.up.dot(p.x[i]) - limits.bottom,
+                     " m above the scene's bottom, so it would fall to the bottom at ", f.fall_speed,
+                     " m/s, above the bound ", limits.max_fall_speed, " m/s = ", kSpeedFactor,
+                     " x max(sqrt(2 |g| H) = ", std::sqrt(2.0 * limits.gravity * limits.height),
+                     " m/s with H = ", limits.height, " m the height of the box around the fluid and solids",
+                     denser, ", 2 x the fastest solid's ", limits.solid_speed, " m/s, 1 m/s)"),
+                 advice());
   }
 }
 

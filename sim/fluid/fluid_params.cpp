@@ -22,6 +22,7 @@ void validate(const FluidSolverParams& p) {
   check(s::cfl, p.cfl);
   check(s::min_dt, p.min_dt);
   check(s::max_dt, p.max_dt);
+  check(s::depth_cfl, p.depth_cfl);
   check(s::density_tolerance, p.density_tolerance);
   check(s::min_density_iterations, p.min_density_iterations);
   check(s::max_density_iterations, p.max_density_iterations);

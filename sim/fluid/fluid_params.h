@@ -4,6 +4,7 @@
 // defaults here are those declarations, and validate() checks their ranges.
 #include <array>
 #include <cstdint>
+#include <string_view>
 #include <vector>
 
 #include "sim/core/vec.h"
@@ -31,11 +32,12 @@ struct FluidSolverParams {
   Vec3f gravity = declared_vec3<Vec3f>(keys::scene::gravity);  // m/s^2
 
   // Time step: dt = cfl * 2r / max speed (fluid and moving solids), also at most h^2 / (32 nu) for
-  // the explicit viscosity to stay stable (h = 4r; binds only for large nu), clamped to
-  // [min_dt, max_dt].
+  // the explicit viscosity to stay stable (h = 4r; binds only for large nu) and at most
+  // depth_cfl * 2r / sqrt(|g| D) for deep water (time_step.h), clamped to [min_dt, max_dt].
   float cfl = declared_float(keys::solver::cfl);
   double min_dt = keys::solver::min_dt.value[0];  // s
   double max_dt = keys::solver::max_dt.value[0];  // s
+  float depth_cfl = declared_float(keys::solver::depth_cfl);  // 0 = no depth limit
 
   // Constant-density solve: iterate until the average predicted compression (rho* - rho0) / rho0
   // over all particles (expansion counts as 0) is at most this; 0.0005 = 0.05%.
@@ -58,11 +60,11 @@ struct FluidSolverParams {
   float push_out_skin = declared_float(keys::solver::push_out_skin);
   // Starting lattice points closer than this (in units of r) to a box or sphere are left out, as
   // those inside are. A point that close overlaps the solid's boundary samples and is flung out on
-  // the first steps (README, Deep fluid against walls).
+  // the first steps (README, Deep water).
   float start_clearance = declared_float(keys::solver::start_clearance);
-  // Walls press back with each fluid particle's own pressure ([AIA12]), or, when true, with the fluid's
-  // pressure extrapolated into them (boundary_pressure.h).
-  bool extrapolate_wall_pressure = false;
+  // Walls press back with the fluid's pressure extrapolated into them (boundary_pressure.h), or, when
+  // false, with each fluid particle's own pressure ([AIA12]). The default is the key's first choice.
+  bool extrapolate_wall_pressure = std::string_view(keys::solver::wall_pressure.choices).starts_with("extrapolated");
 };
 
 // An initial cuboid of fluid, m. Filled on a lattice of spacing 2r centred in the box, so the
@@ -87,6 +89,8 @@ struct SolverStats {
   uint64_t divergence_unconverged = 0;
   uint64_t corrections = 0;             // fluid particles projected out of a solid after a step
   uint64_t dt_clamped_to_min = 0;       // steps where the CFL step was below min_dt
+  uint64_t retries = 0;                 // times a blown-up stretch was taken again with a smaller step
+  double step_cap = 0.0;                // s: the largest step the solver takes now (time_step.h, retries)
   size_t fluid_particles = 0, boundary_particles = 0;
   size_t removed_at_start = 0;          // block lattice points left out because they were inside solids
   std::array<double, size_t(FluidStage::Count)> stage_seconds{};  // wall clock per stage

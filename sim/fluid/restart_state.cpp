@@ -17,7 +17,7 @@ static_assert(std::endian::native == std::endian::little, "restart files are wri
 static_assert(sizeof(Vec3f) == 12, "Vec3f must be three packed floats");
 
 constexpr char kMagic[] = "SPUMERS1";
-constexpr size_t kHeaderSize = 168;
+constexpr size_t kHeaderSize = 184;
 constexpr size_t kDigestSize = 16;
 constexpr uint32_t kHasWarmStart = 1u;
 
@@ -36,9 +36,10 @@ std::string header_of(const FluidRestartState& s) {
   h += digest;
   const SolverCounters& c = s.counters;
   for (uint64_t count : {c.steps, c.density_iterations, c.divergence_iterations, c.density_unconverged,
-                         c.divergence_unconverged, c.corrections, c.dt_clamped_to_min})
+                         c.divergence_unconverged, c.corrections, c.dt_clamped_to_min, c.retries})
     io::store(h, count, Endian::Little);
-  for (double d : {c.dt_sum, c.density_error, c.max_density_error, c.divergence_error, c.min_dt_used, c.max_dt_used})
+  for (double d : {c.dt_sum, c.density_error, c.max_density_error, c.divergence_error, c.min_dt_used, c.max_dt_used,
+                   c.step_cap})
     io::store(h, d, Endian::Little);
   return h;
 }
@@ -86,10 +87,10 @@ FluidRestartState read_restart_state(const std::filesystem::path& path) {
   s.digest = std::string(digest.substr(0, digest.find('\0')));
   SolverCounters& c = s.counters;
   for (uint64_t* count : {&c.steps, &c.density_iterations, &c.divergence_iterations, &c.density_unconverged,
-                          &c.divergence_unconverged, &c.corrections, &c.dt_clamped_to_min})
+                          &c.divergence_unconverged, &c.corrections, &c.dt_clamped_to_min, &c.retries})
     *count = r.read<uint64_t>("counters");
   for (double* d : {&c.dt_sum, &c.density_error, &c.max_density_error, &c.divergence_error, &c.min_dt_used,
-                    &c.max_dt_used})
+                    &c.max_dt_used, &c.step_cap})
     *d = r.read<double>("statistics");
   const uint64_t per_particle = 4 + 12 + 12 + (flags & kHasWarmStart ? 8 : 0);
   if (n > r.remaining() / per_particle || n * per_particle != r.remaining())
@@ -101,9 +102,10 @@ FluidRestartState read_restart_state(const std::filesystem::path& path) {
     read_array(r, s.density_warm, n, "density warm start");
     read_array(r, s.divergence_warm, n, "divergence warm start");
   }
-  if (!std::isfinite(s.time) || !std::isfinite(s.dt_prev) || !(s.dt_prev > 0.0) || !std::isfinite(s.particle_radius))
-    fail(where, ": time ", s.time, ", dt_prev ", s.dt_prev, " and radius ", s.particle_radius,
-         " must be finite (dt_prev > 0)");
+  if (!std::isfinite(s.time) || !std::isfinite(s.dt_prev) || !(s.dt_prev > 0.0) ||
+      !std::isfinite(s.particle_radius) || !std::isfinite(c.step_cap) || !(c.step_cap > 0.0))
+    fail(where, ": time ", s.time, ", dt_prev ", s.dt_prev, ", step cap ", c.step_cap, " and radius ",
+         s.particle_radius, " must be finite (dt_prev and the step cap > 0)");
   for (size_t i = 0; i < n; ++i)
     if (!finite(s.positions[i]) || !finite(s.velocities[i]))
       fail(where, ": particle ", s.ids[i], " has a non-finite position or velocity");

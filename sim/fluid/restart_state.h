@@ -6,15 +6,15 @@
 // Carried: the particles in the solver's own (cell-sorted) order, which fixes the order of every
 // later sum; their ids, positions and velocities; the warm-start pressures when warm_start is on
 // (otherwise never read); the time and the last step, which the next step's divergence solve and
-// CFL estimate use; and the counters behind solver_stats.csv. Not carried, because the next step
-// rebuilds them from the above: neighbour grid and pairs, densities, DFSPH factors, accelerations,
-// boundary particles (kinematic solids are placed by their motion at the restored time). Dynamic
-// bodies are not restorable: Bullet's contact caches, warm-started impulses and broadphase pair
+// CFL estimate use; and the counters behind solver_stats.csv, with the step cap retries lowered.
+// Not carried, because the next step rebuilds them from the above: neighbour grid and pairs,
+// densities, DFSPH factors, accelerations, boundary particles (kinematic solids are placed by their
+// motion at the restored time). Dynamic bodies are not restorable: Bullet's contact caches, warm-started impulses and broadphase pair
 // order shape its next steps and are not exposed, so a solver with dynamic bodies refuses.
 //
-// File (.spr), little-endian, no padding, header 168 bytes:
+// File (.spr), little-endian, no padding, header 184 bytes:
 //   offset   0  char[8]  magic "SPUMERS1"
-//   offset   8  u32      version (1)
+//   offset   8  u32      version (2; 1 had no retries and step cap)
 //   offset  12  i32      frame index the state belongs to
 //   offset  16  f64      time (s)
 //   offset  24  f64      the last step, dt_prev (s)
@@ -22,10 +22,10 @@
 //   offset  36  u32      flags: bit 0 warm-start arrays present (other bits must be 0)
 //   offset  40  u64      particle count n
 //   offset  48  char[16] digest of what the state was made from (the caller's; e.g. the scene keys)
-//   offset  64  u64[7]   steps, density iterations, divergence iterations, unconverged density solves,
-//                        unconverged divergence solves, corrections, steps clamped to min_dt
-//   offset 120  f64[6]   sum of dt, last density error, largest density error, last divergence error,
-//                        smallest dt, largest dt
+//   offset  64  u64[8]   steps, density iterations, divergence iterations, unconverged density solves,
+//                        unconverged divergence solves, corrections, steps clamped to min_dt, retries
+//   offset 128  f64[7]   sum of dt, last density error, largest density error, last divergence error,
+//                        smallest dt, largest dt, the step cap (s; retries lower it for good)
 //   then ids u32[n], positions f32[3n], velocities f32[3n],
 //        (bit 0) density warm start f32[n], divergence warm start f32[n], all in solver order,
 //   then u32 CRC-32 (zlib crc32) of every byte before it.
@@ -54,7 +54,7 @@ struct FluidRestartState {
   size_t size() const { return ids.size(); }
 };
 
-constexpr uint32_t kRestartVersion = 1;
+constexpr uint32_t kRestartVersion = 2;
 
 void write_restart_state(const std::filesystem::path& path, const FluidRestartState& state);
 // Verifies magic, version, flags, size, CRC and that every value is finite; Error names the file.

@@ -159,4 +159,30 @@ void RigidBodies::step(double t, double dt, const std::vector<Vec3d>& force, con
   }
 }
 
+void RigidBodies::reset(const std::vector<BodyPose>& poses, double t) {
+  if (empty()) return;
+  if (poses.size() != poses_.size()) fail("rigid bodies: reset with ", poses.size(), " poses for ", poses_.size(), " bodies");
+  World& w = *world_;
+  // Out and back in, in the order they were made: the broadphase and the solver start afresh.
+  for (auto& o : w.objects) w.world.removeRigidBody(o.get());
+  w.broadphase.resetPool(&w.dispatcher);
+  w.solver.reset();
+  for (size_t b = 0; b < w.bodies.size(); ++b) {
+    btRigidBody& body = *w.bodies[b];
+    body.setWorldTransform(pose_transform(poses[b].position, poses[b].orientation));
+    body.setInterpolationWorldTransform(body.getWorldTransform());
+    body.setLinearVelocity(bt(poses[b].velocity));
+    body.setAngularVelocity(bt(poses[b].angular_velocity));
+    body.setInterpolationLinearVelocity(body.getLinearVelocity());
+    body.setInterpolationAngularVelocity(body.getAngularVelocity());
+    body.clearForces();
+  }
+  for (const World::Kinematic& m : w.kinematic) {
+    m.object->setWorldTransform(pose_transform(m.solid->centre() + m.solid->motion.offset(t), m.solid->orientation));
+    m.object->setInterpolationWorldTransform(m.object->getWorldTransform());
+  }
+  for (auto& o : w.objects) w.world.addRigidBody(o.get());
+  poses_ = poses;
+}
+
 }  // namespace spume::fluid

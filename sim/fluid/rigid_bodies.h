@@ -40,6 +40,11 @@ class RigidBodies {
   // of at most kMaxSubstep. Kinematic solids move to their offset at each substep's end.
   void step(double t, double dt, const std::vector<Vec3d>& force, const std::vector<Vec3d>& torque);
 
+  // Puts every body back at `poses` (as poses() gave them) at time t, with Bullet's contact caches
+  // emptied: what a fluid solver retrying a stretch from its last good state needs. The steps after
+  // it are deterministic, though not those of a run that never left that state.
+  void reset(const std::vector<BodyPose>& poses, double t);
+
   static constexpr double kMaxSubstep = 1.0 / 1000.0;  // s
 
  private:

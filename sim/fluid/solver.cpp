@@ -37,7 +37,8 @@ FluidSolver::FluidSolver(FluidSolverParams params, const std::vector<FluidBlock>
   limits_ = fluid::blow_up_limits(params_, blocks, solids_);
   const float r = params_.particle_radius;
   volume_ = 8.0f * r * r * r;
-  dt_prev_ = params_.max_dt;
+  counters_.step_cap = fluid::initial_step_cap(params_, fluid::starting_depth(blocks, params_.gravity));
+  dt_prev_ = counters_.step_cap;
   const SolidSet now = solids_.at_time(0.0);
   particles_ = fluid::fill_blocks(blocks, r, now, params_.start_clearance * r, stats_.removed_at_start);
   if (particles_.size() == 0) fail("fluid solver: the fluid blocks hold no particles at radius ", r, " m");
@@ -51,6 +52,7 @@ FluidSolver::FluidSolver(FluidSolverParams params, const std::vector<FluidBlock>
   sync_body_centres();
   boundary_ = fluid::sample_boundary(solids_, params_.boundary_spacing * r, kernel_.h);
   fluid::place_boundary(boundary_, placements_at(0.0), true);
+  fluid::set_start_energy(limits_, particles_);
   stats_.fluid_particles = particles_.size();
   stats_.boundary_particles = boundary_.size();
   update_neighbourhoods();
@@ -112,10 +114,58 @@ void FluidSolver::update_neighbourhoods() {
 }
 
 void FluidSolver::advance_to(double t, const std::function<void()>& after_step) {
-  while (time_ < t) {
-    step_to(t);
-    if (after_step) after_step();
+  if (!(time_ < t)) return;
+  const Checkpoint start = checkpoint();
+  for (int attempt = 0;; ++attempt) {
+    try {
+      while (time_ < t) {
+        step_to(t);
+        if (after_step) after_step();
+      }
+      return;
+    } catch (const fluid::BlowUp& e) {
+      const double cap = counters_.step_cap;
+      if (attempt == kMaxRetries || cap <= params_.min_dt)
+        throw fluid::BlowUp(e.what(), attempt ? str(" (taken again ", attempt, attempt == 1 ? " time" : " times",
+                                                     " from t = ", start.state.time, " s with steps down to ", cap,
+                                                     " s)")
+                                              : std::string());
+      roll_back(start);
+      ++counters_.retries;
+      counters_.step_cap = std::max(params_.min_dt, 0.5 * cap);
+      last_retry_reason_ = e.finding();
+    }
   }
+}
+
+FluidSolver::Checkpoint FluidSolver::checkpoint() const {
+  Checkpoint c{restart_state(0), bodies_.poses()};
+  c.state.counters = counters_;
+  return c;
+}
+
+void FluidSolver::roll_back(const Checkpoint& c) {
+  const FluidRestartState& s = c.state;
+  fluid::Particles& p = particles_;
+  p.id = s.ids;
+  p.x = s.positions;
+  p.v = s.velocities;
+  if (params_.warm_start) {
+    p.density_warm = s.density_warm;
+    p.divergence_warm = s.divergence_warm;
+  }
+  time_ = s.time;
+  dt_prev_ = s.dt_prev;
+  const double cap = counters_.step_cap;
+  const uint64_t retries = counters_.retries;
+  counters_ = s.counters;
+  counters_.step_cap = cap, counters_.retries = retries;  // what the retries learnt stays
+  if (!bodies_.empty()) {
+    bodies_.reset(c.poses, time_);
+    sync_body_centres();
+  }
+  fluid::place_boundary(boundary_, placements_at(time_), false);
+  update_neighbourhoods();
 }
 
 double FluidSolver::step() { return step_to(INFINITY); }
@@ -145,7 +195,8 @@ double FluidSolver::step_to(double target) {
     fluid::non_pressure_accelerations(params_, neighbourhoods_, boundary_, kernel_.h, volume_, dt_prev_, p);
     if (coupled)
       fluid::add_viscous_force(params_, neighbourhoods_, boundary_, coupling_, particle_mass, kernel_.h, p, loads_);
-    const fluid::TimeStepChoice choice = fluid::cfl_time_step(params_, p, dt_prev_, solids_, time_, body_speed());
+    const fluid::TimeStepChoice choice =
+        fluid::cfl_time_step(params_, p, dt_prev_, solids_, time_, counters_.step_cap, body_speed());
     counters_.dt_clamped_to_min += choice.clamped_to_min ? 1 : 0;
     dt = fluid::fit_to_remaining(choice.dt, target - time_);
   }
@@ -211,8 +262,9 @@ void FluidSolver::project_out_of_solids() {
   if (bad > 0.0)
     for (size_t i = 0; i < n; ++i)
       if (!finite(p.x[i]) || !finite(p.v[i]))
-        fail("fluid solver: particle ", p.id[i], " has a non-finite position or velocity at t = ", time_,
-             " s (", uint64_t(bad), " particles in all); try a smaller max_dt or cfl");
+        throw fluid::BlowUp(str("fluid solver: particle ", p.id[i], " has a non-finite position or velocity at t = ",
+                                time_, " s (", uint64_t(bad), " particles in all)"),
+                            "; try a smaller max_dt or cfl");
   if (now.empty()) return;
   const double moved = fluid::chunked_sum(n, [&](size_t b, size_t e) {
     double count = 0.0;
@@ -328,6 +380,8 @@ SolverStats FluidSolver::stats() const {
   s.divergence_unconverged = c.divergence_unconverged;
   s.corrections = c.corrections;
   s.dt_clamped_to_min = c.dt_clamped_to_min;
+  s.retries = c.retries;
+  s.step_cap = c.step_cap;
   if (c.steps) {
     s.average_dt = c.dt_sum / double(c.steps);
     s.average_density_iterations = double(c.density_iterations) / double(c.steps);

@@ -8,7 +8,7 @@
 // One step (the simulation loop of [BK17], rotated so that it starts from fresh neighbourhoods):
 //   1. sort the particles by grid cell, cache neighbour pairs, density and the DFSPH factor
 //   2. divergence-free solve on v (pressure.h)
-//   3. non-pressure accelerations a (forces.h); dt from the CFL condition (time_step.h)
+//   3. non-pressure accelerations a (forces.h); dt from the CFL and depth conditions (time_step.h)
 //   4. v* = v + dt a; constant-density solve on v*
 //   5. x += dt v; solids move to t + dt (dynamic bodies: Bullet steps them under gravity and the
 //      fluid's forces on their boundary particles, coupling.h); any particle that entered a solid is
@@ -18,13 +18,13 @@
 // at its velocity at the start of the step (v + w x r per boundary particle); the impulses the two
 // pressure solves and the boundary viscosity give the fluid through the body's boundary particles
 // go back to the body as a force and torque held over the step. The coupling is explicit: a body
-// reacts one step late, which is stable for bodies down to about a third of the fluid's density at
-// the CFL steps used here (lighter ones may need a smaller max_dt). Known weakness of this explicit
-// scheme: the pressure solve treats the body's velocity as given, so fluid squeezed between a body
-// and a wall pushes as hard as it takes to get out of the way: a dense box landing on the tank floor
-// through a one-particle film rebounds and spins before settling (tests/bench/RESULTS.md §6). A last
-// layer of particles stays trapped under a flat body resting on a wall. An implicit body-fluid solve
-// would remove both (sim/MODEL.md §10).
+// reacts one step late, which holds for a cube a tenth of the fluid's density. Known weakness of this
+// explicit scheme: the pressure solve treats the body's velocity as given, so fluid squeezed between
+// a body and a wall pushes as hard as it takes to get out of the way: a box twice the water's
+// density landing on the tank floor through a one-particle film rebounds and spins before settling
+// (tests/bench/RESULTS.md §6), one three times as dense blows the film out at any step. A last layer
+// of particles stays trapped under a flat body resting on a wall. An implicit body-fluid solve would
+// remove both (sim/MODEL.md §10).
 //
 // References: [BK15] Bender, Koschier: Divergence-free smoothed particle hydrodynamics, SCA 2015.
 // [BK17] Bender, Koschier: Divergence-free SPH for incompressible and viscous fluids, IEEE TVCG 2017.
@@ -32,6 +32,7 @@
 // incompressible SPH, ACM TOG (SIGGRAPH) 2012. [Mon05] Monaghan: Smoothed particle hydrodynamics,
 // Rep. Prog. Phys. 68, 2005.
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "sim/core/frames.h"
@@ -59,8 +60,15 @@ class FluidSolver {
   FluidSolver(FluidSolverParams params, const std::vector<FluidBlock>& blocks, SolidSet solids);
 
   // Steps until time() == t exactly (the last steps are fitted to land on t). No-op if t <= time().
-  // `after_step`, if given, is called after every step (progress reports).
+  // `after_step`, if given, is called after every step (progress reports). When a step blows up
+  // (blow_up.h), the whole stretch is taken again from the state advance_to started from with the
+  // step cap halved, which stays lowered for the rest of the run (stats().retries, .step_cap), up to
+  // kMaxRetries times and never below min_dt; then the last BlowUp is rethrown with what was tried.
+  // Every decision rests on thread-independent values, so the bytes are too.
   void advance_to(double t, const std::function<void()>& after_step = {});
+  static constexpr int kMaxRetries = 4;
+  // What the blow-up behind the last retry found (BlowUp::finding), "" when none has happened.
+  const std::string& last_retry_reason() const { return last_retry_reason_; }
   // One step of at most the CFL time step; returns dt (s). Throws Error when the step blew up
   // (blow_up.h: a density error or a particle's energy past the limits), naming the value and bound.
   double step();
@@ -107,6 +115,13 @@ class FluidSolver {
   std::vector<fluid::SolidPlacement> step_placements(double t0, double t1) const;
   double body_speed() const;  // fastest point of any dynamic body, m/s
   void sync_body_centres();
+  // What advance_to goes back to when a stretch blows up.
+  struct Checkpoint {
+    FluidRestartState state;
+    std::vector<BodyPose> poses;
+  };
+  Checkpoint checkpoint() const;
+  void roll_back(const Checkpoint& c);
 
   FluidSolverParams params_;
   SolidSet solids_;
@@ -125,6 +140,7 @@ class FluidSolver {
   fluid::BlowUpLimits limits_;
   double time_ = 0.0;
   double dt_prev_;
+  std::string last_retry_reason_;
   SolverStats stats_;        // what stats() reports beyond counters_: particle counts, stage times
   SolverCounters counters_;  // step to step: behind stats() and carried by restart_state()
 };

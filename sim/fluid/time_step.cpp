@@ -8,8 +8,31 @@
 
 namespace spume::fluid {
 
+double starting_depth(const std::vector<FluidBlock>& blocks, const Vec3f& gravity) {
+  if (blocks.empty() || !(gravity.norm() > 0.0f)) return 0.0;
+  const Vec3f up = -gravity.normalized();
+  double lo = INFINITY, hi = -INFINITY;
+  for (const FluidBlock& b : blocks)
+    for (int c = 0; c < 8; ++c) {
+      const Vec3f corner(c & 1 ? b.max.x() : b.min.x(), c & 2 ? b.max.y() : b.min.y(), c & 4 ? b.max.z() : b.min.z());
+      const double z = double(up.dot(corner));
+      lo = std::min(lo, z), hi = std::max(hi, z);
+    }
+  return hi - lo;
+}
+
+double settling_step(const FluidSolverParams& params, double depth) {
+  const double g = double(params.gravity.norm());
+  if (!(params.depth_cfl > 0.0f) || !(g > 0.0) || !(depth > 0.0)) return INFINITY;
+  return double(params.depth_cfl) * 2.0 * double(params.particle_radius) / std::sqrt(g * depth);
+}
+
+double initial_step_cap(const FluidSolverParams& params, double depth) {
+  return std::max(params.min_dt, std::min(params.max_dt, settling_step(params, depth)));
+}
+
 TimeStepChoice cfl_time_step(const FluidSolverParams& params, const Particles& p, double dt_prev,
-                             const SolidSet& solids, double t, double body_speed) {
+                             const SolidSet& solids, double t, double step_cap, double body_speed) {
   const float fdt = float(dt_prev);
   const double v2 = chunked_max(p.size(), 0.0, [&](size_t b, size_t e) {
     float m = 0.0f;
@@ -28,7 +51,7 @@ TimeStepChoice cfl_time_step(const FluidSolverParams& params, const Particles& p
   const double viscous_dt = nu > 0.0 ? h * h / (32.0 * nu) : INFINITY;
   const double wanted = std::min(cfl_dt, viscous_dt);
   c.clamped_to_min = wanted < params.min_dt;
-  c.dt = std::clamp(wanted, params.min_dt, params.max_dt);
+  c.dt = std::clamp(wanted, params.min_dt, std::max(params.min_dt, step_cap));
   return c;
 }
 

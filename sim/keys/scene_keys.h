@@ -90,7 +90,7 @@ inline constexpr KeySpec viscosity{.path = "fluid.solver.viscosity", .unit = "m^
                                    .hi = 10, .lo_bound = Closed, .hi_bound = Closed,
                                    .doc = "kinematic viscosity of the SPH Laplacian; damps particle noise"};
 inline constexpr KeySpec boundary_viscosity{.path = "fluid.solver.boundary_viscosity", .unit = "m^2/s",
-                                            .value = {1e-3}, .lo = 0, .hi = 10, .lo_bound = Closed,
+                                            .value = {1.5e-3}, .lo = 0, .hi = 10, .lo_bound = Closed,
                                             .hi_bound = Closed, .doc = "wall friction; 0 = free-slip walls"};
 inline constexpr KeySpec xsph{.path = "fluid.solver.xsph", .value = {0}, .lo = 0, .hi = 1, .lo_bound = Closed,
                               .hi_bound = Closed, .doc = "XSPH velocity smoothing per step; 0 = off"};
@@ -100,9 +100,11 @@ inline constexpr KeySpec min_dt{.path = "fluid.solver.min_dt", .unit = "s", .val
                                 .lo_bound = Closed, .hi_bound = Closed, .doc = "smallest time step (double)"};
 inline constexpr KeySpec max_dt{.path = "fluid.solver.max_dt", .unit = "s", .value = {5e-3}, .lo = 1e-9, .hi = 1,
                                 .lo_bound = Closed, .hi_bound = Closed,
-                                .doc = "largest time step, at least min_dt (double); deep water (tens of particle layers) at r "
-                                       "below 1 cm needs about 0.04 sqrt(2 r / |g|) (1.5 ms at 7.3 mm) with wall_pressure = "
-                                       "extrapolated (README: Deep fluid against walls)"};
+                                .doc = "largest time step, at least min_dt (double); depth_cfl may ask for less"};
+inline constexpr KeySpec depth_cfl{.path = "fluid.solver.depth_cfl", .value = {0.55}, .lo = 0, .hi = 10,
+                                   .lo_bound = Closed, .hi_bound = Closed,
+                                   .doc = "dt <= depth_cfl x 2 r / sqrt(|g| D), D the starting fluid's depth: "
+                                          "deep water's step (0 = off; README: Deep water)"};
 inline constexpr KeySpec density_tolerance{.path = "fluid.solver.density_tolerance", .value = {5e-4}, .lo = 1e-7,
                                            .hi = 0.1, .lo_bound = Closed, .hi_bound = Closed,
                                            .doc = "average compression the density solve stops at"};
@@ -138,15 +140,15 @@ inline constexpr KeySpec start_clearance{.path = "fluid.solver.start_clearance",
                                          .hi = 4, .lo_bound = Closed, .hi_bound = Closed,
                                          .doc = "starting lattice points closer than this to a box or sphere are "
                                                 "left out, so none overlaps the solid's samples and is flung out "
-                                                "(0: only those inside; README: Deep fluid against walls)"};
+                                                "(0: only those inside; README: Deep water)"};
 inline constexpr KeySpec wall_pressure{.path = "fluid.solver.wall_pressure", .type = Choice,
-                                       .choices = "own|extrapolated",
-                                       .doc = "the pressure a wall pushes back with: each fluid particle's own "
-                                              "(Akinci et al. 2012), or the fluid's beside it plus the "
-                                              "hydrostatic rise (Adami et al. 2012: deep water settles calmer; see the README)"};
+                                       .choices = "extrapolated|own",
+                                       .doc = "the pressure a wall pushes back with: the fluid's beside it plus the "
+                                              "hydrostatic rise (Adami et al. 2012), or each fluid particle's own "
+                                              "(Akinci et al. 2012; deep water churns along the walls)"};
 inline constexpr auto all = std::to_array<const KeySpec*>(
-    {&viscosity, &boundary_viscosity, &xsph, &cfl, &min_dt, &max_dt, &density_tolerance, &min_density_iterations,
-     &max_density_iterations, &divergence_solve, &divergence_tolerance, &min_divergence_iterations,
+    {&viscosity, &boundary_viscosity, &xsph, &cfl, &min_dt, &max_dt, &depth_cfl, &density_tolerance,
+     &min_density_iterations, &max_density_iterations, &divergence_solve, &divergence_tolerance, &min_divergence_iterations,
      &max_divergence_iterations, &warm_start, &boundary_spacing, &push_out_skin, &start_clearance,
      &wall_pressure});
 }  // namespace solver

@@ -40,6 +40,7 @@ FluidSolverSetup read_fluid_solver(const ParamReader& fluid, const Vec3f& gravit
   p.min_dt = s.number(k::min_dt);
   p.max_dt = s.number(k::max_dt);
   if (p.min_dt > p.max_dt) s.fail_at("max_dt", str("value ", p.max_dt, " is below min_dt ", p.min_dt));
+  p.depth_cfl = float(s.number(k::depth_cfl));
   p.density_tolerance = float(s.number(k::density_tolerance));
   p.min_density_iterations = int(s.integer(k::min_density_iterations));
   p.max_density_iterations = int(s.integer(k::max_density_iterations));

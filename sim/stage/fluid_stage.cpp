@@ -24,7 +24,7 @@ namespace spume {
 namespace {
 
 // The fastest particle of a frame, m/s. A fluid meant to be calm that is not (the walls of a deep
-// pool, README "Deep fluid against walls") shows here long before the blow-up check stops a run.
+// pool, README "Deep water") shows here long before the blow-up check stops a run.
 double fastest_speed(const FluidFrame& frame) {
   float fastest = 0.0f;
   for (const Vec3f& v : frame.velocities) fastest = std::max(fastest, v.squaredNorm());
@@ -35,11 +35,12 @@ std::string stats_row(int frame, double time, const SolverStats& now, const Solv
                       double seconds) {
   const uint64_t steps = now.steps - before.steps;
   char buffer[256];
-  std::snprintf(buffer, sizeof buffer, "%d,%.6f,%llu,%.3e,%.5f,%.5f,%.2f,%.2f,%llu,%.4f,%.3f\n", frame, time,
-                static_cast<unsigned long long>(steps), steps ? (now.time - before.time) / double(steps) : 0.0,
-                100.0 * now.density_error, 100.0 * now.max_density_error, now.average_density_iterations,
-                now.average_divergence_iterations, static_cast<unsigned long long>(now.corrections), max_speed,
-                seconds);
+  std::snprintf(buffer, sizeof buffer, "%d,%.6f,%llu,%.3e,%.5f,%.5f,%.2f,%.2f,%llu,%.4f,%.4f,%llu,%.3f\n", frame,
+                time, static_cast<unsigned long long>(steps),
+                steps ? (now.time - before.time) / double(steps) : 0.0, 100.0 * now.density_error,
+                100.0 * now.max_density_error, now.average_density_iterations, now.average_divergence_iterations,
+                static_cast<unsigned long long>(now.corrections), max_speed, 1e3 * now.step_cap,
+                static_cast<unsigned long long>(now.retries), seconds);
   return buffer;
 }
 
@@ -133,8 +134,8 @@ FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions
   else if (match.kind == RecordMatch::Kind::Prefix && !options.force)
     progress.note(str("fluid: re-solving from t = 0 (", match.why, "): cannot continue: ", restart_why));
   progress.note(str(solver.size(), " fluid particles, ", solver.stats().boundary_particles,
-                       " boundary particles, frames ", first, "-", last, " at ", scene.fluid.fps, " fps (",
-                       summary.why, ")"));
+                       " boundary particles, frames ", first, "-", last, " at ", scene.fluid.fps, " fps, steps of at most ",
+                       1e3 * solver.stats().step_cap, " ms (", summary.why, ")"));
   std::string stats = resume ? resume->stats : std::string(kSolverStatsHeader) + "\n";
   SolverStats before = solver.stats();
   double fastest = 0.0;  // of the frames made here, for the closing line
@@ -158,6 +159,11 @@ FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions
     write_fluid_cache(fluid_cache_path(out, f), frame, scene.fluid.particle_radius);
     if (has_bodies) bodies.frames.push_back(solver.body_poses());
     const SolverStats now = solver.stats();
+    // Said once per frame that needed it: what blew up, and the step the solver settled on.
+    if (now.retries > before.retries)
+      progress.note(str("fluid frame ", f, ": ", solver.last_retry_reason(), "; took the frame again from t = ",
+                        before.time, " s with steps of at most ", 1e3 * now.step_cap, " ms (were ",
+                        1e3 * before.step_cap, " ms)"));
     const double speed = fastest_speed(frame);
     if (speed > fastest) fastest = speed, fastest_frame = f;
     stats += stats_row(f, frame.time, now, before, speed, t0.seconds());
@@ -179,7 +185,7 @@ FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions
   summary.seconds = start.seconds();
   const SolverStats s = solver.stats();
   // The fastest particle is said, not judged: no threshold on it separates the runs that are right
-  // from the ones that are not (README "Deep fluid against walls"), but a reader who knows the flow can.
+  // from the ones that are not (README "Deep water"), but a reader who knows the flow can.
   progress.finish(str(s.steps, " steps, mean dt ", s.average_dt * 1e3, " ms, max density error ",
                       100.0 * s.max_density_error, "%, fastest particle ", fastest, " m/s (frame ",
                       fastest_frame, ") -> ", dir.string()));

@@ -28,7 +28,7 @@ namespace spume {
 // seconds, the frame's wall clock, stays last.
 inline constexpr const char* kSolverStatsHeader =
     "frame,time,steps,mean_dt,density_error_pct,max_density_error_pct,density_iterations,divergence_iterations,"
-    "corrections,max_speed,seconds";
+    "corrections,max_speed,step_cap_ms,retries,seconds";
 
 struct FluidStageOptions {
   std::filesystem::path out_root = "out";

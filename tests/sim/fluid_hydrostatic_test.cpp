@@ -69,9 +69,11 @@ TEST(FluidHydrostatic, TankAtRestKeepsDensityAndStaysStill) {
     if (f.positions[i].y() < 0.25f) sum += rho[i], ++count;
   EXPECT_NEAR(sum / count, 1.0, 2e-3);
 
-  // Velocities decay: a 0.4 m column has a velocity scale sqrt(g H) ~ 2 m/s.
+  // Velocities decay: a 0.4 m column has a velocity scale sqrt(g H) ~ 2 m/s. The lattice's first
+  // settling decays to a floor the solve's tolerance keeps stirring (0.015 m/s rms with the
+  // extrapolated wall pressure, which settles it calmly enough that 0.3 s in it is only at 0.028).
   EXPECT_LT(at_end.max_speed, 0.15);
-  EXPECT_LT(at_end.rms_speed, 0.5 * at_03.rms_speed);
+  EXPECT_LT(at_end.rms_speed, 0.75 * at_03.rms_speed);
   EXPECT_LT(at_end.rms_speed, 0.03);
   // The centre of mass: no horizontal drift; the initial lattice compacts once (the surface layer and
   // the disordered packing, measured ~2.6% of the height), then the fluid stays put.

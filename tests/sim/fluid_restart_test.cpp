@@ -128,6 +128,7 @@ TEST(FluidRestart, FileRoundTripsEveryField) {
   s.counters.divergence_unconverged = 6, s.counters.corrections = 7, s.counters.dt_clamped_to_min = 8;
   s.counters.dt_sum = 1.5, s.counters.density_error = 2.5e-4, s.counters.max_density_error = 4.9e-4, s.counters.divergence_error = 1e-5;
   s.counters.min_dt_used = 1e-4, s.counters.max_dt_used = 5e-3;
+  s.counters.retries = 9, s.counters.step_cap = 1.25e-3;
   s.ids = {2, 0, 1};
   s.positions = {Vec3f(1, 2, 3), Vec3f(-0.0f, 1e-30f, 7), Vec3f(0.1f, 0.2f, 0.3f)};
   s.velocities = {Vec3f(4, 5, 6), Vec3f(-1, -2, -3), Vec3f(0, 0, 0)};
@@ -136,8 +137,8 @@ TEST(FluidRestart, FileRoundTripsEveryField) {
   const testing::TempDir temp;
   const fs::path file = temp / "roundtrip.spr";
   write_restart_state(file, s);
-  // Header 168 bytes, 3 x (4 + 12 + 12 + 4 + 4) bytes of particles, 4 bytes of CRC.
-  EXPECT_EQ(fs::file_size(file), 168u + 3u * 36u + 4u);
+  // Header 184 bytes, 3 x (4 + 12 + 12 + 4 + 4) bytes of particles, 4 bytes of CRC.
+  EXPECT_EQ(fs::file_size(file), 184u + 3u * 36u + 4u);
   const FluidRestartState r = read_restart_state(file);
   EXPECT_EQ(r.frame, 42);
   EXPECT_EQ(r.time, s.time);
@@ -157,6 +158,8 @@ TEST(FluidRestart, FileRoundTripsEveryField) {
   EXPECT_EQ(r.counters.divergence_error, 1e-5);
   EXPECT_EQ(r.counters.min_dt_used, 1e-4);
   EXPECT_EQ(r.counters.max_dt_used, 5e-3);
+  EXPECT_EQ(r.counters.retries, 9u);
+  EXPECT_EQ(r.counters.step_cap, 1.25e-3);
   EXPECT_EQ(r.ids, s.ids);
   EXPECT_TRUE(same_bytes(r.positions, s.positions));  // -0 and denormals too
   EXPECT_TRUE(same_bytes(r.velocities, s.velocities));
@@ -166,7 +169,7 @@ TEST(FluidRestart, FileRoundTripsEveryField) {
   // Without warm start the arrays are left out (flags bit 0 clear).
   s.density_warm.clear(), s.divergence_warm.clear();
   write_restart_state(file, s);
-  EXPECT_EQ(fs::file_size(file), 168u + 3u * 28u + 4u);
+  EXPECT_EQ(fs::file_size(file), 184u + 3u * 28u + 4u);
   EXPECT_TRUE(read_restart_state(file).density_warm.empty());
 }
 

@@ -166,9 +166,16 @@ TEST_F(PipelineStages, SolverStatsAndTheLastLineGiveTheFastestParticle) {
   const std::string log = ::testing::internal::GetCapturedStderr();
   const auto rows = testing::read_csv(out / "tiny/fluid/solver_stats.csv");
   ASSERT_EQ(rows.size(), 5u);
-  ASSERT_EQ(rows[0].size(), 11u);
+  ASSERT_EQ(rows[0].size(), 13u);
   EXPECT_EQ(rows[0][9], "max_speed");
-  for (int k = 0; k <= 3; ++k) EXPECT_NEAR(std::stod(rows[k + 1][9]), 9.81 * k / 20.0, 1e-3) << "frame " << k;
+  EXPECT_EQ(rows[0][10], "step_cap_ms");
+  EXPECT_EQ(rows[0][11], "retries");
+  for (int k = 0; k <= 3; ++k) {
+    EXPECT_NEAR(std::stod(rows[k + 1][9]), 9.81 * k / 20.0, 1e-3) << "frame " << k;
+    // 0.2 m deep at r = 2.5 cm: depth_cfl's 0.55 x 0.05 / sqrt(9.81 x 0.2) = 19.6 ms, so max_dt's 5 ms binds.
+    EXPECT_EQ(rows[k + 1][10], "5.0000") << "frame " << k;
+    EXPECT_EQ(rows[k + 1][11], "0") << "frame " << k;
+  }
   // The stage's last line names the run's fastest particle: any particle of the last frame.
   const size_t at = log.rfind("fastest particle ");
   ASSERT_NE(at, std::string::npos) << log;
