@@ -145,7 +145,19 @@ FluidSolver::Checkpoint FluidSolver::checkpoint() const {
 }
 
 void FluidSolver::roll_back(const Checkpoint& c) {
-  const FluidRestartState& s = c.state;
+  const double cap = counters_.step_cap;
+  const uint64_t retries = counters_.retries;
+  adopt(c.state);
+  counters_.step_cap = cap, counters_.retries = retries;  // what the retries learnt stays
+  if (!bodies_.empty()) {
+    bodies_.reset(c.poses, time_);
+    sync_body_centres();
+  }
+  fluid::place_boundary(boundary_, placements_at(time_), false);
+  update_neighbourhoods();
+}
+
+void FluidSolver::adopt(const FluidRestartState& s) {
   fluid::Particles& p = particles_;
   p.id = s.ids;
   p.x = s.positions;
@@ -156,16 +168,7 @@ void FluidSolver::roll_back(const Checkpoint& c) {
   }
   time_ = s.time;
   dt_prev_ = s.dt_prev;
-  const double cap = counters_.step_cap;
-  const uint64_t retries = counters_.retries;
   counters_ = s.counters;
-  counters_.step_cap = cap, counters_.retries = retries;  // what the retries learnt stays
-  if (!bodies_.empty()) {
-    bodies_.reset(c.poses, time_);
-    sync_body_centres();
-  }
-  fluid::place_boundary(boundary_, placements_at(time_), false);
-  update_neighbourhoods();
 }
 
 double FluidSolver::step() { return step_to(INFINITY); }
@@ -310,17 +313,7 @@ void FluidSolver::restore(const FluidRestartState& s) {
     if (id >= n || seen[id]) fail("fluid solver: the saved state's ids are not a permutation of 0..", n - 1);
     seen[id] = 1;
   }
-  fluid::Particles& p = particles_;
-  p.id = s.ids;
-  p.x = s.positions;
-  p.v = s.velocities;
-  if (params_.warm_start) {
-    p.density_warm = s.density_warm;
-    p.divergence_warm = s.divergence_warm;
-  }
-  time_ = s.time;
-  dt_prev_ = s.dt_prev;
-  counters_ = s.counters;
+  adopt(s);
   // The particles come in the order the grid sorted them into, and sorting them again keeps it (the
   // sort breaks ties by index), so the grid, pairs and their summation order are the saved run's.
   fluid::place_boundary(boundary_, placements_at(time_), false);

@@ -122,6 +122,9 @@ class FluidSolver {
   };
   Checkpoint checkpoint() const;
   void roll_back(const Checkpoint& c);
+  // Takes the particles, time, last step and counters of a state (restore and roll_back check and
+  // place the rest).
+  void adopt(const FluidRestartState& s);
 
   FluidSolverParams params_;
   SolidSet solids_;
