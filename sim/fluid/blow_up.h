@@ -18,7 +18,7 @@
 //    by more than kEnergySlack x |g| H over its start. The density solve's tolerance lets a little in
 //    (the inviscid dam break of the stability suite gains 1.1% of g H); a step too long for the
 //    water's depth gains far more long before any particle passes the bound above (a 10 m column at
-//    40 ms steps: 30% of g H, its fastest particle at 4 m/s against a bound of 77).
+//    40 ms steps: 18% of g H, its fastest particle at 4 m/s against a bound of 77).
 // Measured, the largest u / U_ref over whole runs of the shipped scenes: dam break 1.79 (29k
 // particles, a splash thrown up the far wall; 1.98 at 211k over its first second), tower 1.51,
 // wave 1.50, lighthouse 1.13, ship 0.98; so 5 leaves a margin of 2.5 (6 in energy). With
