@@ -138,11 +138,7 @@ void FluidSolver::advance_to(double t, const std::function<void()>& after_step) 
   }
 }
 
-FluidSolver::Checkpoint FluidSolver::checkpoint() const {
-  Checkpoint c{restart_state(0), bodies_.poses()};
-  c.state.counters = counters_;
-  return c;
-}
+FluidSolver::Checkpoint FluidSolver::checkpoint() const { return {restart_state(0), bodies_.poses()}; }
 
 void FluidSolver::roll_back(const Checkpoint& c) {
   const double cap = counters_.step_cap;
