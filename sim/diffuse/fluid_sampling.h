@@ -16,6 +16,8 @@
 
 namespace spume {
 
+// sample_fluid writes the first three arrays whole at every call, so between calls their buffers may
+// be lent (the simulator's compaction does).
 struct FluidSamples {
   std::vector<float> neighbour_count;  // fluid particles within h (before any solid share)
   std::vector<Vec3f> fluid_velocity;   // sum_f v_f K / sum_f K; zero where the sum of K is zero

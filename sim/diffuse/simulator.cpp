@@ -9,6 +9,7 @@
 #include "sim/core/parallel.h"
 #include "sim/core/stopwatch.h"
 #include "sim/diffuse/advection.h"
+#include "sim/diffuse/compaction.h"
 #include "sim/diffuse/emission.h"
 #include "sim/geometry/solid_coverage.h"
 
@@ -204,23 +205,10 @@ void DiffuseSimulator::step(const FluidStepState& state, uint32_t step, float dt
       born, [&](size_t k) { return !limit || setup_.domain.contains(particles_.positions[old_count + k]); },
       [&](size_t k, size_t slot) { order_[survivors + slot] = uint32_t(old_count + k); });
   pending_.removed += born - kept_born;
-  const size_t count = survivors + kept_born;
-  // Room for the next step's newborns, so that emission rarely has to move every particle.
-  if (spare_.positions.capacity() < count) spare_.reserve(count + count / 8);
-  spare_.resize(count);
-  spare_.index = particles_.index;
-  spare_.time = particles_.time;
-  parallel_for(count, 1 << 14, [&](size_t b, size_t e) {
-    for (size_t k = b; k < e; ++k) {
-      const uint32_t i = order_[k];
-      spare_.ids[k] = particles_.ids[i];
-      spare_.positions[k] = particles_.positions[i];
-      spare_.velocities[k] = particles_.velocities[i];
-      spare_.lifetimes[k] = particles_.lifetimes[i];
-      spare_.types[k] = particles_.types[i];
-    }
-  });
-  std::swap(particles_, spare_);
+  // Reordered in place, column by column. The fluid samples' velocities and kernel sums lend their
+  // buffers: advection was their last reader, and the next classify() writes them whole.
+  compact(particles_, std::span(order_).first(survivors + kept_born),
+          {samples_.fluid_velocity, samples_.kernel_sum, compaction_ids_, compaction_types_});
 }
 
 FrameStats DiffuseSimulator::process_frame(const FluidFrame& a, const FluidFrame* b,

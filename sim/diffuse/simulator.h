@@ -102,7 +102,8 @@ class DiffuseSimulator {
   // Buffers reused every step (fresh memory costs a page fault per 4 KiB).
   std::vector<uint8_t> alive_;  // 1 alive, 0 dissolved, 2 left the domain
   std::vector<uint32_t> order_;
-  DiffuseFrame spare_;
+  std::vector<uint64_t> compaction_ids_;      // the old ids after a compaction (compaction.h)
+  std::vector<DiffuseType> compaction_types_;  // the old types likewise
   EmissionBuffers emission_buffers_;
   SolidSet classify_solids_, step_solids_;
   SolidClearance classify_clearance_, step_clearance_;
