@@ -13,6 +13,10 @@ class RadixSorter {
  public:
   // Sorts indices 0..keys.size()-1 by keys (stable); only the low `key_bits` bits are examined.
   void sort(std::span<const uint32_t> keys, int key_bits);
+  // The same for keys written into input_keys() first, so that they need no array of the caller's:
+  // the first pass reads them there and writes its output to the other key buffer.
+  std::vector<uint32_t>& input_keys() { return keys_; }
+  void sort_input_keys(int key_bits);
   const std::vector<uint32_t>& order() const { return order_; }        // input index of each sorted slot
   const std::vector<uint32_t>& sorted_keys() const { return keys_; }   // keys in sorted order
   std::vector<uint32_t>& order() { return order_; }

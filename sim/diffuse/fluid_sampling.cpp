@@ -27,15 +27,16 @@ void sample_fluid(const NeighbourGrid& grid, std::span<const Vec3f> sorted_motio
   // share the key one past the last and sort last.
   const bool halves = grid.key_count() <= NeighbourGrid::kMaxOctantKeys;
   const uint32_t outside = halves ? grid.key_count() * 8 : grid.key_count();
-  resize_in_huge_pages(out.keys, n);
+  std::vector<uint32_t>& keys = out.sorter.input_keys();
+  resize_in_huge_pages(keys, n);
   parallel_for(n, 1 << 14, [&](size_t b, size_t e) {
-    if (halves) grid.octant_keys(positions.subspan(b, e - b), std::span(out.keys).subspan(b, e - b));
+    if (halves) grid.octant_keys(positions.subspan(b, e - b), std::span(keys).subspan(b, e - b));
     for (size_t i = b; i < e; ++i) {
-      const uint32_t k = halves ? out.keys[i] : grid.key_of(positions[i]);
-      out.keys[i] = k == NeighbourGrid::kOutside ? outside : k;
+      const uint32_t k = halves ? keys[i] : grid.key_of(positions[i]);
+      keys[i] = k == NeighbourGrid::kOutside ? outside : k;
     }
   });
-  out.sorter.sort(out.keys, std::bit_width(outside));
+  out.sorter.sort_input_keys(std::bit_width(outside));
   const std::vector<uint32_t>& order = out.sorter.order();
   const std::vector<uint32_t>& sorted = out.sorter.sorted_keys();
 

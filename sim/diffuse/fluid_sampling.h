@@ -25,7 +25,7 @@ struct FluidSamples {
   std::vector<uint32_t> cell_order;    // diffuse indices sorted by (half-)cell: a spatially coherent order
 
   // Working buffers kept between calls, so that a step touches no fresh memory.
-  std::vector<uint32_t> keys, group_start;
+  std::vector<uint32_t> group_start;
   RadixSorter sorter;
 };
 

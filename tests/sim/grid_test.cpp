@@ -143,6 +143,27 @@ TEST(RadixSort, ManyChunksMatchStdStableSortForOneAndTwoThreads) {
   set_thread_count(0);
 }
 
+TEST(RadixSort, KeysWrittenIntoTheSorterSortAsTheCallersDo) {
+  // 700k keys of 20 bits (two passes of 10) and of 31 bits (three passes of 11): the sorted keys end in
+  // the input's own buffer after an even number of passes, in the other one after an odd number.
+  std::mt19937 rng(7);
+  for (int bits : {20, 31}) {
+    std::vector<uint32_t> keys(700000);
+    for (auto& k : keys) k = uint32_t(rng()) & ((1u << bits) - 1);
+    for (size_t i = 500; i < 200000; ++i) keys[i] = keys[i - 500];  // runs of equal keys
+    std::vector<uint32_t> expected(keys.size());
+    for (uint32_t i = 0; i < expected.size(); ++i) expected[i] = i;
+    std::stable_sort(expected.begin(), expected.end(), [&](uint32_t a, uint32_t b) { return keys[a] < keys[b]; });
+    RadixSorter sorter;
+    for (int round = 0; round < 2; ++round) {  // the second round reuses the buffers the first left
+      sorter.input_keys() = keys;
+      sorter.sort_input_keys(bits);
+      ASSERT_EQ(sorter.order(), expected) << bits << " " << round;
+      for (size_t i = 0; i < keys.size(); ++i) ASSERT_EQ(sorter.sorted_keys()[i], keys[expected[i]]);
+    }
+  }
+}
+
 TEST(ParallelSelect, KeepsTheSelectedIndicesInOrderForOneAndTwoThreads) {
   const size_t n = 1000003;  // many chunks, the last one short
   std::vector<size_t> expected;
