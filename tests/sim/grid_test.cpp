@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <numeric>
 #include <random>
 
 #include "sim/core/parallel.h"
@@ -109,6 +110,14 @@ TEST(NeighbourGrid, EmptyGridHasNoNeighbours) {
   EXPECT_EQ(grid.key_of(Vec3f::Zero()), NeighbourGrid::kOutside);
 }
 
+// The indices of `keys` in stable sorted order, by the standard library: what a radix sort must give.
+std::vector<uint32_t> stable_sorted_indices(const std::vector<uint32_t>& keys) {
+  std::vector<uint32_t> order(keys.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return keys[a] < keys[b]; });
+  return order;
+}
+
 TEST(RadixSort, IsAStableSortByKey) {
   std::mt19937 rng(5);
   std::vector<uint32_t> keys(100000);
@@ -128,9 +137,7 @@ TEST(RadixSort, ManyChunksMatchStdStableSortForOneAndTwoThreads) {
   std::vector<uint32_t> keys(700000);
   for (auto& k : keys) k = rng() % (1u << 20);
   for (size_t i = 1000; i < 300000; ++i) keys[i] = keys[i - 1000];  // long runs of equal keys
-  std::vector<uint32_t> expected(keys.size());
-  for (uint32_t i = 0; i < expected.size(); ++i) expected[i] = i;
-  std::stable_sort(expected.begin(), expected.end(), [&](uint32_t a, uint32_t b) { return keys[a] < keys[b]; });
+  const std::vector<uint32_t> expected = stable_sorted_indices(keys);
   for (int threads : {1, 2}) {
     set_thread_count(threads);
     RadixSorter sorter;
@@ -151,9 +158,7 @@ TEST(RadixSort, KeysWrittenIntoTheSorterSortAsTheCallersDo) {
     std::vector<uint32_t> keys(700000);
     for (auto& k : keys) k = uint32_t(rng()) & ((1u << bits) - 1);
     for (size_t i = 500; i < 200000; ++i) keys[i] = keys[i - 500];  // runs of equal keys
-    std::vector<uint32_t> expected(keys.size());
-    for (uint32_t i = 0; i < expected.size(); ++i) expected[i] = i;
-    std::stable_sort(expected.begin(), expected.end(), [&](uint32_t a, uint32_t b) { return keys[a] < keys[b]; });
+    const std::vector<uint32_t> expected = stable_sorted_indices(keys);
     RadixSorter sorter;
     for (int round = 0; round < 2; ++round) {  // the second round reuses the buffers the first left
       sorter.input_keys() = keys;
