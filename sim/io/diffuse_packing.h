@@ -1,6 +1,6 @@
 #pragma once
-// The per-particle step of quantize_diffuse (diffuse_quantized.h): each particle's quantized values
-// and cell key, packed in a record the cell sort moves whole.
+// The per-particle steps of quantize_diffuse (diffuse_quantized.h): each particle's cell key, in the
+// frame's order, and the quantized columns, in the cell order.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -9,18 +9,7 @@
 
 namespace spume {
 
-// One particle quantized, with its cell key when the frame has at most 2^32 cells: 24 bytes that the
-// sort moves whole, so that no pass reads the frame at random (a frame's particles away from the
-// fluid come in no spatial order).
-struct PackedDiffuse {
-  uint64_t id;
-  int16_t velocity[3];
-  uint16_t life;
-  uint8_t offset[3];
-  uint8_t type;
-  uint32_t key;
-};
-static_assert(sizeof(PackedDiffuse) == 24);
+struct QuantizedDiffuse;
 
 // The frame's quantization as multipliers (see diffuse_quantized.h for the rules).
 struct PackingSteps {
@@ -33,9 +22,17 @@ struct PackingSteps {
   std::array<uint32_t, 3> cells{};    // cells per axis
 };
 
-// Particles [begin, end) of the frame into records[begin, end), and their 64-bit cell keys into
-// wide_keys[begin, end) unless wide_keys is null.
-void pack_diffuse(const DiffuseFrame& frame, const PackingSteps& steps, size_t begin, size_t end, PackedDiffuse* records,
-                  uint64_t* wide_keys);
+// The cell keys of particles [begin, end), into keys[begin, end): with_index (a frame of at most 2^32
+// cells) as key << 32 | particle index, the pair the cell sort moves; otherwise the key alone.
+void cell_keys(const DiffuseFrame& frame, const PackingSteps& steps, size_t begin, size_t end, uint64_t* keys,
+               bool with_index);
+
+constexpr size_t kPackBlock = 256;  // sorted slots a pack_sorted_block call fills at most
+
+// The quantized columns of sorted slots [first, first + m), m <= kPackBlock, slot first + j holding
+// particle index[j] of the frame. `first` is a multiple of 4 and so is m but at the end, so that each
+// byte of 4 types belongs to one call. out's columns are sized for the frame.
+void pack_sorted_block(const DiffuseFrame& frame, const PackingSteps& steps, const uint32_t* index, size_t m,
+                       size_t first, QuantizedDiffuse& out);
 
 }  // namespace spume

@@ -32,24 +32,25 @@ HugeBuffer<uint32_t> stable_order(const HugeBuffer<uint64_t>& keys, uint64_t max
   return order;
 }
 
-// Stable parallel LSD radix sort of the records by their 32-bit key (its low `bits` bits), over fixed
-// chunks, each counted and scattered by one task: a stable sort has one answer, so neither the
-// chunking nor the thread count can change it.
-void radix_sort(HugeBuffer<PackedDiffuse>& records, int bits) {
-  const size_t n = records.size();
+// Stable parallel LSD radix sort of (key << 32 | index) pairs by their key (its low `bits` bits), over
+// fixed chunks, each counted and scattered by one task: a stable sort has one answer, so neither the
+// chunking nor the thread count can change it. Pairs rather than whole quantized particles: 8 bytes a
+// particle and 8 of scratch instead of 24 and 24.
+void radix_sort(HugeBuffer<uint64_t>& pairs, int bits) {
+  const size_t n = pairs.size();
   if (bits == 0 || n < 2) return;  // one cell: the frame's order
   const int passes = (bits + 10) / 11, digit_bits = (bits + passes - 1) / passes;
   const uint32_t buckets = 1u << digit_bits, mask = buckets - 1;
   const size_t chunks = std::clamp<size_t>(n / (1 << 16), 1, 256), chunk = (n + chunks - 1) / chunks;
   std::vector<uint32_t> next(chunks * buckets);
-  HugeBuffer<PackedDiffuse> scratch(n);
+  HugeBuffer<uint64_t> scratch(n);
   for (int pass = 0; pass < passes; ++pass) {
-    const int shift = pass * digit_bits;
+    const int shift = 32 + pass * digit_bits;
     parallel_for(chunks, 1, [&](size_t cb, size_t ce) {
       for (size_t c = cb; c < ce; ++c) {
         uint32_t* count = &next[c * buckets];
         std::fill(count, count + buckets, 0u);
-        for (size_t i = c * chunk, end = std::min(n, i + chunk); i < end; ++i) ++count[(records[i].key >> shift) & mask];
+        for (size_t i = c * chunk, end = std::min(n, i + chunk); i < end; ++i) ++count[(pairs[i] >> shift) & mask];
       }
     });
     uint32_t sum = 0;  // chunk c's share of a bucket follows the shares of chunks before it
@@ -63,10 +64,10 @@ void radix_sort(HugeBuffer<PackedDiffuse>& records, int bits) {
       for (size_t c = cb; c < ce; ++c) {
         uint32_t* slot = &next[c * buckets];
         for (size_t i = c * chunk, end = std::min(n, i + chunk); i < end; ++i)
-          scratch[slot[(records[i].key >> shift) & mask]++] = records[i];
+          scratch[slot[(pairs[i] >> shift) & mask]++] = pairs[i];
       }
     });
-    std::swap(records, scratch);
+    std::swap(pairs, scratch);
   }
 }
 
@@ -85,6 +86,26 @@ void occupied_cells(size_t n, SortedKey&& sorted_key, QuantizedDiffuse& out) {
     for (size_t c = begin; c < end; ++c) {
       out.cell_key_steps[c] = sorted_key(first[c]) - (c > 0 ? sorted_key(first[c - 1]) : 0);
       out.cell_counts[c] = first[c + 1] - first[c];
+    }
+  });
+}
+
+// The quantized columns in the sorted order, particle index_of(k) in slot k, a block of slots a call.
+template <typename IndexOf>
+void pack_columns(const DiffuseFrame& frame, const PackingSteps& steps, IndexOf&& index_of, QuantizedDiffuse& out) {
+  const size_t n = frame.size(), blocks = (n + kPackBlock - 1) / kPackBlock;
+  // Sized after the sort, so that its scratch, back in the pool, serves the ids.
+  out.offsets.resize(3 * n);
+  out.velocities.resize(3 * n);
+  out.lifetimes.resize(n);
+  out.ids.resize(n);
+  out.types.resize((n + 3) / 4);
+  parallel_for(blocks, kGrain / kPackBlock, [&](size_t begin, size_t end) {
+    uint32_t index[kPackBlock];
+    for (size_t b = begin; b < end; ++b) {
+      const size_t first = b * kPackBlock, m = std::min(kPackBlock, n - first);
+      for (size_t j = 0; j < m; ++j) index[j] = index_of(first + j);
+      pack_sorted_block(frame, steps, index, m, first, out);
     }
   });
 }
@@ -183,46 +204,20 @@ std::optional<QuantizedDiffuse> quantize_diffuse(const DiffuseFrame& frame, doub
   steps.life_origin = q.life_origin;
   steps.per_life_step = q.life_step > 0.0 ? 1.0 / q.life_step : 0.0;
   steps.cells = q.cells;
-  // Each particle's quantized values and cell key, in the frame's order.
-  HugeBuffer<PackedDiffuse> records(n);
+  // Each particle's cell key, in the frame's order, then into cell order (stable: within a cell the
+  // frame's order), then the columns gathered in that order.
   const bool narrow = cells - 1 <= UINT32_MAX;
-  HugeBuffer<uint64_t> wide_keys(narrow ? 0 : n);
-  parallel_for(n, kGrain, [&](size_t begin, size_t end) {
-    pack_diffuse(frame, steps, begin, end, records.data(), narrow ? nullptr : wide_keys.data());
-  });
-  // Into cell order (stable: within a cell the frame's order).
+  HugeBuffer<uint64_t> keys(n);
+  parallel_for(n, kGrain, [&](size_t begin, size_t end) { cell_keys(frame, steps, begin, end, keys.data(), narrow); });
   if (narrow) {
-    radix_sort(records, int(std::bit_width(cells - 1)));
-    occupied_cells(n, [&](size_t k) { return uint64_t(records[k].key); }, out);
+    radix_sort(keys, int(std::bit_width(cells - 1)));
+    occupied_cells(n, [&](size_t k) { return keys[k] >> 32; }, out);
+    pack_columns(frame, steps, [&](size_t k) { return uint32_t(keys[k]); }, out);
   } else {
-    const HugeBuffer<uint32_t> order = stable_order(wide_keys, cells - 1);
-    HugeBuffer<PackedDiffuse> sorted(n);
-    parallel_for(n, kGrain, [&](size_t begin, size_t end) {
-      for (size_t k = begin; k < end; ++k) sorted[k] = records[order[k]];
-    });
-    occupied_cells(n, [&](size_t k) { return wide_keys[order[k]]; }, out);
-    records = std::move(sorted);
+    const HugeBuffer<uint32_t> order = stable_order(keys, cells - 1);
+    occupied_cells(n, [&](size_t k) { return keys[order[k]]; }, out);
+    pack_columns(frame, steps, [&](size_t k) { return order[k]; }, out);
   }
-
-  out.offsets.resize(3 * n);
-  out.velocities.resize(3 * n);
-  out.lifetimes.resize(n);
-  out.ids.resize(n);
-  out.types.resize((n + 3) / 4);
-  // In blocks of 4 particles, so each type byte is written by one iteration.
-  parallel_for(out.types.size(), kGrain / 4, [&](size_t begin, size_t end) {
-    for (size_t b = begin; b < end; ++b) {
-      uint8_t types = 0;
-      for (size_t k = 4 * b; k < std::min(n, 4 * b + 4); ++k) {
-        const PackedDiffuse& p = records[k];
-        for (int a = 0; a < 3; ++a) out.offsets[a * n + k] = p.offset[a], out.velocities[a * n + k] = p.velocity[a];
-        out.lifetimes[k] = p.life;
-        out.ids[k] = p.id;
-        types |= uint8_t(p.type << (2 * (k % 4)));
-      }
-      out.types[b] = types;
-    }
-  });
   return out;
 }
 
