@@ -90,6 +90,9 @@ PreparedRender prepare_render(RenderScene& scene, RenderSettings settings) {
   settings.volume.gravity = scene.gravity;
   settings.environment.ground_height = settings.ground_height.value_or(lowest_point(scene, 1));
   p.settings = std::move(settings);
+  p.diffuse_room = std::make_shared<MemoryRoom>(
+      "the render", "diffuse particles", kRenderBytesPerDiffuseParticle,
+      "simulate fewer (diffuse.k_ta, diffuse.k_wc, diffuse.max_particles) or render on a machine with more memory");
   return p;
 }
 
@@ -155,6 +158,7 @@ LoadedFrame load_frame(PreparedRender& p, int f) {
         const auto cache = diffuse_cache_path(p.scene->scene_out, f);
         if (!std::filesystem::is_regular_file(cache))
           fail(cache.string(), ": no diffuse cache for this frame; run `spume simulate` (or `spume run`) first");
+        if (p.diffuse_room) p.diffuse_room->check(peek_diffuse_cache(cache).count, cache.string());
         if (p.settings.volume.blurs() || p.settings.exr) {  // the velocities too (blur, motion vectors)
           DiffuseFrame full = read_diffuse_cache(cache);
           frame.diffuse.index = full.index, frame.diffuse.time = full.time;

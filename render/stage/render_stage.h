@@ -13,6 +13,7 @@
 // same record, and a frame is current only when both are. With it off, EXR frames of earlier runs are
 // removed (all of them: none can be current), and the log says so.
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,6 +23,7 @@
 #include "render/frame/frame_renderer.h"
 #include "render/frame/render_settings.h"
 #include "render/stage/render_scene.h"
+#include "sim/core/memory_room.h"
 
 namespace spume {
 
@@ -40,11 +42,17 @@ struct RenderStageSummary {
   int first_frame_number = -1;
 };
 
+// What the render holds a diffuse particle at its peak (the frame drawn and the one loaded ahead, the
+// volume pass's bins): 52 bytes over the whole process rendering the lighthouse's 95.7M frames at
+// 1920x1080 (tests/bench/RESULTS.md, "Memory a diffuse particle"), rounded up.
+constexpr double kRenderBytesPerDiffuseParticle = 60.0;
+
 // A scene ready to render: the settings with the camera framed and the ground placed from the
 // whole sequence's bounds, so every farm chunk agrees.
 struct PreparedRender {
   RenderScene* scene = nullptr;
   RenderSettings settings;
+  std::shared_ptr<MemoryRoom> diffuse_room;  // refuses a diffuse cache that cannot fit
 };
 PreparedRender prepare_render(RenderScene& scene, RenderSettings settings);
 

@@ -30,7 +30,12 @@ class StageTimer {
 
 }  // namespace
 
-DiffuseSimulator::DiffuseSimulator(DiffuseSetup setup) : setup_(std::move(setup)) {
+DiffuseSimulator::DiffuseSimulator(DiffuseSetup setup)
+    : setup_(std::move(setup)),
+      room_("the diffuse stage", "diffuse particles", kDiffuseStageBytesPerParticle,
+            "lower the emission (diffuse.k_ta, diffuse.k_wc), shorten diffuse.lifetime, cap the count with "
+            "diffuse.max_particles, or run on a machine with more memory",
+            setup_.available_memory) {
   const float r = setup_.fluid.particle_radius;
   particle_volume_ = 8.0f * r * r * r;  // spacing 2r
 }
@@ -189,6 +194,7 @@ void DiffuseSimulator::step(const FluidStepState& state, uint32_t step, float dt
             solids.push_out(particles_.positions[k], particles_.velocities[k], skin);
       });
   }
+  room_.check(particles_.size(), "");  // the stage names the frame
   pending_.generated += emitted.emitted;
   pending_.dropped += emitted.requested - emitted.emitted;
   pending_.capped = pending_.capped > UINT64_MAX - emitted.capped ? UINT64_MAX : pending_.capped + emitted.capped;

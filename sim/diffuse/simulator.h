@@ -9,6 +9,7 @@
 #include <functional>
 
 #include "sim/core/frames.h"
+#include "sim/core/memory_room.h"
 #include "sim/core/unusable_masses.h"
 #include "sim/diffuse/emission.h"
 #include "sim/diffuse/fluid_sampling.h"
@@ -22,6 +23,11 @@
 #include "sim/geometry/solid_clearance.h"
 
 namespace spume {
+
+// What the diffuse stage holds a particle at its peak, everything included (its state, the fluid
+// samples, the compaction, the cache encoder): the slope of bench_diffuse's peak memory from 1M to
+// 15M particles, 146 bytes (tests/bench/RESULTS.md, "Memory a diffuse particle"), rounded up.
+constexpr double kDiffuseStageBytesPerParticle = 150.0;
 
 enum class Stage { Grid, Classify, Potentials, Emit, Advect, Count };
 constexpr std::array<const char*, size_t(Stage::Count)> kStageNames = {"grid", "classify", "potentials", "emit",
@@ -56,6 +62,7 @@ struct DiffuseSetup {
   Aabb domain;  // diffuse particles outside are deleted; empty box = no limit
   FluidParticles particles = FluidParticles::Sph;  // flip: smoothed velocities, counts at the frame's density
   bool fill_narrow_band = true;                    // fluid.narrow_band = auto: fill an enclosed empty interior
+  MemoryRoom::Available available_memory = available_memory_bytes;  // what a step may grow into
 };
 
 class DiffuseSimulator {
@@ -108,6 +115,7 @@ class DiffuseSimulator {
   SolidSet classify_solids_, step_solids_;
   SolidClearance classify_clearance_, step_clearance_;
   FrameStats pending_;  // accumulates between frames
+  MemoryRoom room_;     // refuses a step whose newborns cannot fit
   const SolidSet* solids_now_ = nullptr;  // the solids at the time of the last classify()
   float particle_volume_;
   FlipFluid flip_;

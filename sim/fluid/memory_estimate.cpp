@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 #include <string>
 
@@ -27,21 +26,6 @@ std::string count(double n) {
   return buffer;
 }
 
-// A number from a one-number file (cgroup v2's memory.max holds "max" when unlimited).
-std::optional<double> number_in(const char* path) {
-  std::ifstream in(path);
-  std::string text;
-  if (!(in >> text)) return std::nullopt;
-  try {
-    size_t used = 0;
-    const double value = std::stod(text, &used);
-    if (used != text.size()) return std::nullopt;
-    return value;
-  } catch (const std::exception&) {
-    return std::nullopt;
-  }
-}
-
 }  // namespace
 
 MemoryEstimate estimate_memory(const FluidSolverParams& params, const std::vector<FluidBlock>& blocks,
@@ -52,22 +36,6 @@ MemoryEstimate estimate_memory(const FluidSolverParams& params, const std::vecto
                                         keys::fluid::support_radius_of(params.particle_radius));
   e.bytes = kBytesPerFluidParticle * e.fluid_particles + kBytesPerBoundaryParticle * e.boundary_particles;
   return e;
-}
-
-std::optional<double> available_memory_bytes() {
-  std::optional<double> available;
-  std::ifstream meminfo("/proc/meminfo");
-  std::string key, unit;
-  double kilobytes = 0.0;
-  while (meminfo >> key >> kilobytes >> unit)
-    if (key == "MemAvailable:") available = kilobytes * 1024.0;
-  const std::optional<double> limit = number_in("/sys/fs/cgroup/memory.max");
-  const std::optional<double> used = number_in("/sys/fs/cgroup/memory.current");
-  if (limit && used) {
-    const double room = std::max(0.0, *limit - *used);
-    available = available ? std::min(*available, room) : room;
-  }
-  return available;
 }
 
 void check_memory(const MemoryEstimate& e, std::optional<double> available) {

@@ -18,6 +18,7 @@
 #include <optional>
 #include <vector>
 
+#include "sim/core/memory_room.h"
 #include "sim/fluid/fluid_params.h"
 #include "sim/geometry/solids.h"
 
@@ -35,11 +36,6 @@ constexpr double kBytesPerBoundaryParticle = 80.0;
 
 MemoryEstimate estimate_memory(const FluidSolverParams& params, const std::vector<FluidBlock>& blocks,
                                const SolidSet& solids);
-
-// The memory the kernel could give this process now: /proc/meminfo's MemAvailable, lowered to the
-// room left under a cgroup v2 limit (memory.max - memory.current) when there is one. nullopt where
-// neither can be read.
-std::optional<double> available_memory_bytes();
 
 // Throws Error with the counts, the estimate and the available memory when the estimate exceeds it.
 void check_memory(const MemoryEstimate& estimate, std::optional<double> available);

@@ -33,7 +33,7 @@ FluidSolver::FluidSolver(FluidSolverParams params, const std::vector<FluidBlock>
     : params_(params), solids_(std::move(solids)), kernel_(keys::fluid::support_radius_of(params.particle_radius)) {
   validate(params_);
   solids_.validate();
-  fluid::check_memory(fluid::estimate_memory(params_, blocks, solids_), fluid::available_memory_bytes());
+  fluid::check_memory(fluid::estimate_memory(params_, blocks, solids_), available_memory_bytes());
   limits_ = fluid::blow_up_limits(params_, blocks, solids_);
   const float r = params_.particle_radius;
   volume_ = 8.0f * r * r * r;

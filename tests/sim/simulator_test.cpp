@@ -3,6 +3,7 @@
 
 #include <cstring>
 
+#include "sim/core/error.h"
 #include "sim/core/parallel.h"
 #include "sim/diffuse/simulator.h"
 #include "sim/scene/diffuse_params_reader.h"
@@ -203,6 +204,35 @@ TEST(DiffuseSimulator, WallsCountAsFluidSoABubbleAtTheFloorStaysABubble) {
     sim.process_frame(fluid[0], nullptr, [&](const DiffuseFrame& f, const FrameStats&) { out = f; });
     EXPECT_EQ(out.types[1], DiffuseType::Bubble);  // (4/3) pi h^3 / (2r)^3 = 33.5 neighbours
     EXPECT_EQ(out.types[0], count_solids ? DiffuseType::Bubble : DiffuseType::Foam) << count_solids;
+  }
+}
+
+TEST(DiffuseSimulator, AStepThatCannotFitIsRefusedWithTheNumbers) {
+  // Room for 1,000 particles at the stage's bytes a particle: the collision makes more within a few
+  // frames. The run stops at the step that would pass 1,000, and the frames before it are the ones an
+  // unlimited run makes.
+  const auto fluid = colliding_blocks(8);
+  const RunResult unlimited = run(setup_for(1.0f), fluid);
+  ASSERT_GT(unlimited.frames.back().size(), 2000u);
+  DiffuseSetup setup = setup_for(1.0f);
+  setup.available_memory = [] { return std::optional<double>(1000 * kDiffuseStageBytesPerParticle); };
+  DiffuseSimulator sim(setup);
+  std::vector<DiffuseFrame> frames;
+  std::string message;
+  try {
+    for (size_t k = 0; k + 1 < fluid.size(); ++k)
+      sim.process_frame(fluid[k], &fluid[k + 1], [&](const DiffuseFrame& f, const FrameStats&) { frames.push_back(f); });
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  ASSERT_FALSE(message.empty()) << "never refused";
+  EXPECT_NE(message.find("the diffuse stage cannot hold"), std::string::npos) << message;
+  EXPECT_NE(message.find("diffuse.max_particles"), std::string::npos) << message;
+  EXPECT_EQ(message.find("the diffuse stage"), 0u) << message;  // the caller names the frame
+  ASSERT_FALSE(frames.empty());
+  for (size_t k = 0; k < frames.size(); ++k) {
+    EXPECT_LE(frames[k].size(), 1000u) << k;
+    EXPECT_TRUE(same_bytes(frames[k].ids, unlimited.frames[k].ids)) << k;
   }
 }
 

@@ -15,7 +15,7 @@ using stability::error_of;
 
 TEST(StabilityThresholds, EqualOrCrossedClampsAreRefusedNamingTheKey) {
   for (const char* key : {"tau_ta", "tau_wc", "tau_k"})
-    for (const std::pair<double, double> clamp : {std::pair{3.0, 3.0}, std::pair{5.0, 2.0}}) {
+    for (const std::pair<double, double>& clamp : {std::pair{3.0, 3.0}, std::pair{5.0, 2.0}}) {
       const double lo = clamp.first, hi = clamp.second;  // a lambda captures these under clang 14
       const std::string message = error_of([&] { stability::setup_with(0.02f, {{key, {lo, hi}}}); });
       EXPECT_NE(message.find(str("/", key)), std::string::npos) << message;

@@ -95,7 +95,7 @@ TEST(StabilityFluidMemory, RefusalNamesTheCountsTheEstimateAndTheAvailableMemory
   for (const char* part : {"about 9.3 GB", "4000000 fluid particles", "1000000 boundary particles", "only 8 GB",
                            "fluid.radius"})
     EXPECT_NE(message.find(part), std::string::npos) << part << " not in: " << message;
-  const std::optional<double> available = fluid::available_memory_bytes();
+  const std::optional<double> available = available_memory_bytes();
   ASSERT_TRUE(available.has_value());  // Linux: /proc/meminfo
   EXPECT_GT(*available, 1.0e6);
 }
@@ -120,7 +120,7 @@ TEST(StabilityFluidMemory, ATenMetreCubeAtOneCentimetreIsRefusedBeforeAllocating
   const std::vector<FluidBlock> blocks = {{Vec3f(0, 0, 0), Vec3f(10, 10, 10)}};
   const fluid::MemoryEstimate e = fluid::estimate_memory(p, blocks, SolidSet());
   EXPECT_EQ(e.fluid_particles, 500.0 * 500 * 500);
-  if (e.bytes <= *fluid::available_memory_bytes()) GTEST_SKIP() << "this machine could hold it";
+  if (e.bytes <= *available_memory_bytes()) GTEST_SKIP() << "this machine could hold it";
   const testing::TempDir temp;
   const std::filesystem::path& dir = temp.path;
   std::ofstream(dir / "big.json") << R"({"name": "big", "fluid": {"source": "solver", "radius": 0.01,
