@@ -3,6 +3,7 @@
 #include <array>
 #include <exception>
 
+#include <cpuid.h>
 #include <half.h>
 #include <immintrin.h>
 
@@ -29,10 +30,25 @@ constexpr int kZipLevel = 1;
 // has it (Imath uses it only when the whole build targets it): a 1080p frame's 29 channels are 60M
 // conversions.
 __attribute__((target("f16c"))) void to_half_f16c(const float* from, size_t stride, Imath::half* to, size_t n) {
-  for (size_t i = 0; i < n; ++i) to[i].setBits(_cvtss_sh(from[i * stride], _MM_FROUND_TO_NEAREST_INT));
+  for (size_t i = 0; i < n; ++i) {  // _cvtss_sh's instruction, without its macro (a C99 literal in clang's)
+    const __m128i h = _mm_cvtps_ph(_mm_set_ss(from[i * stride]), _MM_FROUND_TO_NEAREST_INT);
+    to[i].setBits(uint16_t(_mm_extract_epi16(h, 0)));
+  }
 }
 
-const bool kHasF16c = __builtin_cpu_supports("f16c");
+// F16C is VEX-encoded: the processor must have it and AVX, and the system must save the vector state
+// (XCR0's SSE and AVX bits). By cpuid rather than __builtin_cpu_supports, which clang 14 does not
+// know "f16c" for.
+bool cpu_has_f16c() {
+  unsigned a = 0, b = 0, c = 0, d = 0;
+  if (!__get_cpuid(1, &a, &b, &c, &d)) return false;
+  if (!(c & bit_F16C) || !(c & bit_AVX) || !(c & bit_OSXSAVE)) return false;
+  unsigned low = 0, high = 0;
+  __asm__("xgetbv" : "=a"(low), "=d"(high) : "c"(0));
+  return (low & 6u) == 6u;
+}
+
+const bool kHasF16c = cpu_has_f16c();
 
 void to_half(const float* from, size_t stride, Imath::half* to, size_t n) {
   if (kHasF16c) return to_half_f16c(from, stride, to, n);
