@@ -104,15 +104,20 @@ MemoryRoom::MemoryRoom(std::string what, std::string items, double bytes_per_ite
 void MemoryRoom::check(uint64_t count, const std::string& where) {
   std::lock_guard lock(mutex_);
   if (count <= largest_) return;
-  const double more = double(count - largest_) * bytes_per_item_;
-  const std::optional<double> available = available_();
+  const double needed = double(count) * bytes_per_item_, more = needed - held_;
+  const std::optional<double> available = more > 0.0 ? available_() : std::nullopt;
   if (available && more > *available)
-    fail(where, where.empty() ? "" : ": ", what_, " cannot hold ", millions(count), " ", items_, ": at about ", bytes_per_item_,
-         " bytes each it needs ", byte_size_text(uint64_t(more)), " more than for the ", millions(largest_),
-         " it held so far (", byte_size_text(uint64_t(double(count) * bytes_per_item_)), " in all), and ",
-         byte_size_text(uint64_t(*available)), " is available (MemAvailable, or the cgroup's memory.max); ",
-         remedy_);
+    fail(where, where.empty() ? "" : ": ", what_, " cannot hold ", millions(count), " ", items_, ": at about ",
+         bytes_per_item_, " bytes each they need ", byte_size_text(uint64_t(needed)), ", ",
+         byte_size_text(uint64_t(more)), " more than it holds, and ", byte_size_text(uint64_t(*available)),
+         " is available (MemAvailable, or the cgroup's limit); ", remedy_);
   largest_ = count;
+  held_ = std::max(held_, needed);
+}
+
+void MemoryRoom::credit(double bytes) {
+  std::lock_guard lock(mutex_);
+  held_ += bytes;
 }
 
 }  // namespace spume

@@ -11,13 +11,13 @@
 namespace spume {
 
 // The memory the kernel could give this process now: /proc/meminfo's MemAvailable (free memory and
-// reclaimable caches), lowered to the room left under a cgroup v2 limit (memory.max - memory.current)
-// when there is one. nullopt where neither can be read.
+// reclaimable caches), lowered to the room left under the process's cgroup limit (v2 or v1) when there
+// is one. nullopt where neither can be read.
 std::optional<double> available_memory_bytes();
 
-// Tracks the largest count a stage has held (its buffers are sized and resident for it) and refuses a
-// count whose growth beyond it needs more than is available, at `bytes_per_item` (measured).
-// Thread-safe (a render checks the frame it prefetches).
+// Refuses a count whose growth beyond what the stage holds (the working set of the largest count that
+// passed, at `bytes_per_item`, measured over the whole process, plus what was credited) needs more
+// than is available. Thread-safe (a render checks the frame it prefetches).
 class MemoryRoom {
  public:
   using Available = std::function<std::optional<double>()>;
@@ -25,14 +25,18 @@ class MemoryRoom {
   MemoryRoom(std::string what, std::string items, double bytes_per_item, std::string remedy,
              Available available = available_memory_bytes);
   // Throws Error naming `where` (e.g. a file; "": the caller's context names it) when `count` cannot
-  // fit; else records it.
+  // fit.
   void check(uint64_t count, const std::string& where);
+  // Memory the stage already holds outside what check() has seen (e.g. a restart's particles).
+  void credit(double bytes);
+
  private:
   std::mutex mutex_;
   std::string what_, items_, remedy_;
   double bytes_per_item_;
   Available available_;
   uint64_t largest_ = 0;
+  double held_ = 0.0;  // bytes
 };
 
 }  // namespace spume

@@ -40,6 +40,13 @@ DiffuseSimulator::DiffuseSimulator(DiffuseSetup setup)
   particle_volume_ = 8.0f * r * r * r;  // spacing 2r
 }
 
+void DiffuseSimulator::set_particles(DiffuseFrame particles) {
+  // Held from now on: the step's check counts only what the stage adds to them.
+  constexpr size_t kParticleBytes = sizeof(uint64_t) + 2 * sizeof(Vec3f) + sizeof(float) + sizeof(DiffuseType);
+  room_.credit(double(particles.size()) * kParticleBytes);
+  particles_ = std::move(particles);
+}
+
 const SolidSet& DiffuseSimulator::solids_at(double t, SolidSet& slot) const {
   if (!setup_.solids.any_moving()) return setup_.solids;
   slot = solids_at_time(setup_.solids, setup_.bodies, t);

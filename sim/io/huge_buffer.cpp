@@ -1,6 +1,7 @@
 #include "sim/io/huge_buffer.h"
 
 #include <sys/mman.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdint>
@@ -72,6 +73,15 @@ void* grow_block(void* block, size_t old_bytes, size_t new_bytes) {
 
 }  // namespace
 
+size_t scratch_pool_cap() {
+  static const size_t cap = [] {
+    const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    const size_t third = pages > 0 && page > 0 ? size_t(pages) * size_t(page) / 3 : 0;
+    return std::max(size_t(2) << 30, third);
+  }();
+  return cap;
+}
+
 void* scratch_take(size_t bytes, size_t& block_bytes, BlockWrites writes) {
   const size_t want = block_size(bytes);
   Kept grow{nullptr, 0, writes};
@@ -131,7 +141,7 @@ void scratch_give_back(void* block, size_t block_bytes, BlockWrites writes) {
     std::lock_guard lock(p.mutex);
     p.kept.push_back({block, block_bytes, writes});
     p.kept_bytes += block_bytes;
-    while (p.kept_bytes > kScratchPoolBytes) {
+    while (p.kept_bytes > scratch_pool_cap()) {
       release.push_back(p.kept.front());
       p.kept_bytes -= p.kept.front().bytes;
       p.kept.erase(p.kept.begin());

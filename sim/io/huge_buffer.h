@@ -3,7 +3,7 @@
 // 4 KiB page on first touch (most of a large frame's encode time on a virtual machine: about 4 ms a
 // MiB on this one, 2 ms with 2 MiB pages), and std::vector also zero-fills what is about to be
 // overwritten; this buffer asks for 2 MiB pages (transparent huge pages, madvise), leaves the
-// contents to the writer, and hands its memory back to a small process-wide pool when it is freed, so
+// contents to the writer, and hands its memory back to a process-wide pool when it is freed, so
 // that the next frame's columns reuse pages already mapped (scratch_pool below).
 #include <sys/mman.h>
 
@@ -25,13 +25,16 @@ namespace spume {
 // its own kind of owner first.
 enum class BlockWrites { Whole, InPart };
 
-// The pool behind HugeBuffer: freed blocks are kept (up to kScratchPoolBytes of blocks in all, the oldest
+// The pool behind HugeBuffer: freed blocks are kept (up to scratch_pool_cap() of blocks in all, the oldest
 // released first beyond that) and a request takes the smallest kept block that fits, when that block
 // is at most twice the request, of its own kind if one fits. Block sizes are rounded up to 2 MiB times
 // 8..15 x a power of two, so that a frame slightly larger than the last still fits the last frame's
 // blocks; when none fits, the largest kept block of at least half the request (of its own kind first)
 // is grown in place of a fresh one (its pages move over, and only the growth is fresh). Thread-safe.
-constexpr size_t kScratchPoolBytes = size_t(2) << 30;  // address space: only the touched pages are resident
+// A third of the machine's memory, at least 2 GiB (address space: only the touched pages are resident).
+// A 100M-particle frame's cache encoder takes about 7 GiB of blocks; handed back to the system beyond
+// a 2 GiB cap, they were cleared again on the next frame: 2.4 s of a 9 s frame (RESULTS.md §17.1).
+size_t scratch_pool_cap();
 void* scratch_take(size_t bytes, size_t& block_bytes, BlockWrites writes = BlockWrites::Whole);
 void scratch_give_back(void* block, size_t block_bytes, BlockWrites writes = BlockWrites::Whole);
 size_t scratch_pool_kept_bytes();  // memory held for reuse now
