@@ -1,6 +1,6 @@
 #include <dlfcn.h>
 
-#include <mutex>
+#include <string>
 
 #include "render/gl/gl_api.h"
 #include "sim/core/error.h"

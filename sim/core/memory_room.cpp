@@ -115,9 +115,9 @@ void MemoryRoom::check(uint64_t count, const std::string& where) {
   held_ = std::max(held_, needed);
 }
 
-void MemoryRoom::credit(double bytes) {
+void MemoryRoom::holding(double bytes) {
   std::lock_guard lock(mutex_);
-  held_ += bytes;
+  held_ = std::max(held_, bytes);
 }
 
 }  // namespace spume

@@ -16,8 +16,8 @@ namespace spume {
 std::optional<double> available_memory_bytes();
 
 // Refuses a count whose growth beyond what the stage holds (the working set of the largest count that
-// passed, at `bytes_per_item`, measured over the whole process, plus what was credited) needs more
-// than is available. Thread-safe (a render checks the frame it prefetches).
+// passed, at `bytes_per_item`, measured over the whole process, or what it was told it holds) needs
+// more than is available. Thread-safe (a render checks the frame it prefetches).
 class MemoryRoom {
  public:
   using Available = std::function<std::optional<double>()>;
@@ -27,8 +27,8 @@ class MemoryRoom {
   // Throws Error naming `where` (e.g. a file; "": the caller's context names it) when `count` cannot
   // fit.
   void check(uint64_t count, const std::string& where);
-  // Memory the stage already holds outside what check() has seen (e.g. a restart's particles).
-  void credit(double bytes);
+  // The stage holds at least `bytes` already, outside what check() has seen (e.g. a restart's particles).
+  void holding(double bytes);
 
  private:
   std::mutex mutex_;

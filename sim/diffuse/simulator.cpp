@@ -43,7 +43,7 @@ DiffuseSimulator::DiffuseSimulator(DiffuseSetup setup)
 void DiffuseSimulator::set_particles(DiffuseFrame particles) {
   // Held from now on: the step's check counts only what the stage adds to them.
   constexpr size_t kParticleBytes = sizeof(uint64_t) + 2 * sizeof(Vec3f) + sizeof(float) + sizeof(DiffuseType);
-  room_.credit(double(particles.size()) * kParticleBytes);
+  room_.holding(double(particles.size()) * kParticleBytes);
   particles_ = std::move(particles);
 }
 

@@ -43,13 +43,18 @@ TEST(MemoryRoom, OnlyTheGrowthBeyondWhatIsHeldMustFit) {
   EXPECT_EQ(asked, before);
 }
 
-TEST(MemoryRoom, WhatTheStageAlreadyHoldsIsCredited) {
+TEST(MemoryRoom, WhatTheStageAlreadyHoldsCounts) {
   // A restart: 3.7e8 bytes of particles already held, 2e8 available; 5M particles at 100 bytes (5e8)
   // need 1.3e8 more and fit, where with nothing held they would not.
   MemoryRoom restarted("the stage", "particles", 100.0, "", fixed(2e8)), fresh("the stage", "particles", 100.0, "", fixed(2e8));
-  restarted.credit(3.7e8);
+  restarted.holding(3.7e8);
   EXPECT_EQ(refusal(restarted, 5'000'000), "");
   EXPECT_NE(refusal(fresh, 5'000'000), "");
+  // Told twice (particles replaced), it holds the larger, not the sum: 8e8 would need 4.3e8 more.
+  MemoryRoom replaced("the stage", "particles", 100.0, "", fixed(2e8));
+  replaced.holding(3.7e8);
+  replaced.holding(3.7e8);
+  EXPECT_NE(refusal(replaced, 8'000'000), "");
 }
 
 TEST(MemoryRoom, UnknownAvailableMemoryRefusesNothing) {
