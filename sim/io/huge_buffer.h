@@ -33,7 +33,7 @@ enum class BlockWrites { Whole, InPart };
 // is grown in place of a fresh one (its pages move over, and only the growth is fresh). Thread-safe.
 // A third of the machine's memory, at least 2 GiB (address space: only the touched pages are resident).
 // A 100M-particle frame's cache encoder takes about 7 GiB of blocks; handed back to the system beyond
-// a 2 GiB cap, they were cleared again on the next frame: 2.4 s of a 9 s frame (RESULTS.md §17.1).
+// a fixed 2 GiB cap, they had to be cleared again every frame (RESULTS.md §17.1).
 size_t scratch_pool_cap();
 void* scratch_take(size_t bytes, size_t& block_bytes, BlockWrites writes = BlockWrites::Whole);
 void scratch_give_back(void* block, size_t block_bytes, BlockWrites writes = BlockWrites::Whole);
