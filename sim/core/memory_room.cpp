@@ -103,16 +103,15 @@ MemoryRoom::MemoryRoom(std::string what, std::string items, double bytes_per_ite
 
 void MemoryRoom::check(uint64_t count, const std::string& where) {
   std::lock_guard lock(mutex_);
-  if (count <= largest_) return;
   const double needed = double(count) * bytes_per_item_, more = needed - held_;
-  const std::optional<double> available = more > 0.0 ? available_() : std::nullopt;
+  if (more <= 0.0) return;  // within what is held: nothing to ask
+  const std::optional<double> available = available_();
   if (available && more > *available)
     fail(where, where.empty() ? "" : ": ", what_, " cannot hold ", millions(count), " ", items_, ": at about ",
          bytes_per_item_, " bytes each they need ", byte_size_text(uint64_t(needed)), ", ",
          byte_size_text(uint64_t(more)), " more than it holds, and ", byte_size_text(uint64_t(*available)),
          " is available (MemAvailable, or the cgroup's limit); ", remedy_);
-  largest_ = count;
-  held_ = std::max(held_, needed);
+  held_ = needed;
 }
 
 void MemoryRoom::holding(double bytes) {

@@ -35,8 +35,7 @@ class MemoryRoom {
   std::string what_, items_, remedy_;
   double bytes_per_item_;
   Available available_;
-  uint64_t largest_ = 0;
-  double held_ = 0.0;  // bytes
+  double held_ = 0.0;  // bytes: the largest count that passed at bytes_per_item_, or what holding() said
 };
 
 }  // namespace spume
