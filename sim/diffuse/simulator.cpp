@@ -142,12 +142,12 @@ void DiffuseSimulator::step(const FluidStepState& state, uint32_t step, float dt
 
   // Advect the existing particles (MODEL.md §4), keep them out of solids, dissolve foam (§5).
   resize_in_huge_pages(alive_, old_count);
-  std::atomic<uint64_t> dissolved{0}, removed{0};
+  std::atomic<uint64_t> dissolved{0}, removed{0}, landed{0};
   {
     StageTimer timer(pending_, Stage::Advect);
     const BubbleStep bubble = bubble_step(p, dt);
     parallel_for(old_count, 4096, [&](size_t b, size_t e) {
-      uint64_t dissolved_here = 0, removed_here = 0;
+      uint64_t dissolved_here = 0, removed_here = 0, landed_here = 0;
       for (size_t i = b; i < e; ++i) {
         Vec3f& x = particles_.positions[i];
         Vec3f& v = particles_.velocities[i];
@@ -172,12 +172,14 @@ void DiffuseSimulator::step(const FluidStepState& state, uint32_t step, float dt
         if (alive && limit && !setup_.domain.contains(x)) alive = 2;
         alive_[i] = alive;
         dissolved_here += alive == 0, removed_here += alive == 2;
+        landed_here += alive == 2 && setup_.ground && x[setup_.ground->up_axis] < setup_.ground->level;
       }
-      dissolved += dissolved_here, removed += removed_here;
+      dissolved += dissolved_here, removed += removed_here, landed += landed_here;
     });
   }
   pending_.dissolved += dissolved;
   pending_.removed += removed;
+  pending_.landed += landed;
 
   // Emit from the fluid at t (MODEL.md §1-2); newborns are appended after the existing particles.
   EmissionResult emitted;

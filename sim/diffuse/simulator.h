@@ -42,6 +42,7 @@ struct FrameStats {
   uint64_t generated = 0;   // emitted since the previous frame
   uint64_t dissolved = 0;   // foam whose lifetime ran out since the previous frame
   uint64_t removed = 0;     // left the domain since the previous frame
+  uint64_t landed = 0;      // ... of them, below the ground (thrown over a tank's rim, fallen outside it)
   uint64_t dropped = 0;     // candidates the emission budget refused since the previous frame
   uint64_t capped = 0;      // asked for by Eq. 8 beyond 4,095 per fluid particle and step, never sampled
   std::array<double, size_t(Stage::Count)> stage_ms{};
@@ -61,6 +62,7 @@ struct DiffuseSetup {
   SolidSet solids;
   BodyTrack bodies;  // poses of the dynamic solids (empty: they stay at their initial pose)
   Aabb domain;  // diffuse particles outside are deleted; empty box = no limit
+  std::optional<GroundPlane> ground;  // where spray over a tank's rim lands (SolidSet::ground_below_tanks)
   FluidParticles particles = FluidParticles::Sph;  // flip: smoothed velocities, counts at the frame's density
   bool fill_narrow_band = true;                    // fluid.narrow_band = auto: fill an enclosed empty interior
   MemoryRoom::Available available_memory = available_memory_bytes;  // what a step may grow into

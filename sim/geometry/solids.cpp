@@ -217,6 +217,17 @@ bool SolidSet::any_dynamic() const {
   return std::any_of(solids_.begin(), solids_.end(), [](const Solid& s) { return s.dynamics.enabled; });
 }
 
+std::optional<GroundPlane> SolidSet::ground_below_tanks() const {
+  std::optional<GroundPlane> ground;
+  for (const Solid& s : solids_) {
+    if (s.kind != Solid::Kind::Tank) continue;
+    if (ground && ground->up_axis != s.up_axis) return std::nullopt;
+    const float floor = s.min[s.up_axis];
+    if (!ground || floor < ground->level) ground = GroundPlane{s.up_axis, floor};
+  }
+  return ground;
+}
+
 void SolidSet::validate() const {
   for (size_t i = 0; i < solids_.size(); ++i) {
     const Solid& s = solids_[i];

@@ -10,6 +10,7 @@
 // Boxes may be rotated (orientation about their centre); tanks are axis-aligned.
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "sim/core/vec.h"
@@ -93,6 +94,13 @@ struct Solid {
   Vec3f velocity_at(const Vec3f& p) const;
 };
 
+// The ground under the tanks: the lowest tank floor, across their common up axis. Spray thrown over
+// a rim falls outside the tanks until it reaches it.
+struct GroundPlane {
+  int up_axis = 1;
+  float level = 0.0f;
+};
+
 class SolidSet {
  public:
   SolidSet() = default;
@@ -101,6 +109,8 @@ class SolidSet {
   const std::vector<Solid>& solids() const { return solids_; }
   bool any_moving() const;   // a kinematic motion or a dynamic body
   bool any_dynamic() const;
+  // None without a tank, or when the tanks disagree on which axis is up.
+  std::optional<GroundPlane> ground_below_tanks() const;
 
   // The solids at time t (s): each moved by its motion's offset(t), with `velocity` set to the
   // motion's velocity at t and the motion itself cleared, so the snapshot is a static set that

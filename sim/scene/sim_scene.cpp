@@ -14,10 +14,12 @@ namespace {
 
 // Bump when a change of spume's code makes old caches wrong.
 // 2: walls count only where wet, emission along the motion, the whole sequence's domain.
-constexpr int kCacheGeneration = 2;
+constexpr int kFluidCacheGeneration = 2;
+// 3: a tank's domain reaches beside it, where spray thrown over the rim falls.
+constexpr int kDiffuseCacheGeneration = 3;
 
-Json with_generation(Json keys) {
-  keys["spume_cache_generation"] = kCacheGeneration;
+Json with_generation(Json keys, int generation) {
+  keys["spume_cache_generation"] = generation;
   return keys;
 }
 
@@ -169,10 +171,10 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
   }
   // No output.* key: the exports are made from the caches, with records of their own
   // (io/frame_export.h), so turning one on or off re-simulates nothing.
-  scene.fluid_keys = with_generation(keys);
+  scene.fluid_keys = with_generation(keys, kFluidCacheGeneration);
   keys["diffuse"] = root.effective("diffuse");
   keys["domain"] = root.effective("domain");
-  scene.diffuse_keys = with_generation(keys);
+  scene.diffuse_keys = with_generation(keys, kDiffuseCacheGeneration);
   return scene;
 }
 
@@ -180,10 +182,15 @@ Aabb default_domain(const SimScene& scene, const Aabb& fluid_bounds) {
   Aabb box;
   for (const Solid& s : scene.solids.solids())
     if (s.kind == Solid::Kind::Tank) {
-      box.extend(s.min);
-      Vec3f top = s.max;
-      if (s.open_top) top[s.up_axis] += s.max[s.up_axis] - s.min[s.up_axis];
-      box.extend(top);
+      // Spray thrown over an open rim falls outside, beside the tank, to the ground at its floor.
+      Vec3f lo = s.min, hi = s.max;
+      if (s.open_top) {
+        const float height = s.max[s.up_axis] - s.min[s.up_axis];
+        lo -= Vec3f::Constant(height), hi += Vec3f::Constant(height);
+        lo[s.up_axis] = s.min[s.up_axis];
+      }
+      box.extend(lo);
+      box.extend(hi);
     }
   if (!box.empty()) return box;
   box = fluid_bounds;

@@ -77,10 +77,14 @@ void DiffuseRunNotes::simulated(const FrameStats& stats, bool first, int next_fr
                                          : "without stored velocities they stand still between frames, "
                                            "so foam and bubbles are not carried by the flow",
                           " (MODEL.md §8.16; a cache with an id attribute avoids it)"));
-  if (stats.generated > 0 && stats.removed * 100 > stats.generated) {
+  // Spray that fell over a tank's rim to the ground is where it belongs; the rest may be a domain
+  // drawn too tight.
+  landed_ += stats.landed;
+  const uint64_t lost = stats.removed - stats.landed;
+  if (stats.generated > 0 && lost * 100 > stats.generated) {
     if (++domain_warnings_ <= 3)
-      messages::warning(str("frame ", stats.frame, " removed ", stats.removed, " diffuse particles outside the "
-                            "domain, ", 100.0 * double(stats.removed) / double(stats.generated), "% of the ",
+      messages::warning(str("frame ", stats.frame, " removed ", lost, " diffuse particles outside the "
+                            "domain, ", 100.0 * double(lost) / double(stats.generated), "% of the ",
                             stats.generated, " emitted; ",
                             solids_ ? "if the flow reaches beyond the domain, widen domain.min / domain.max"
                                     : "the run has no container (none given, none inferred: the log says why), so "
@@ -95,6 +99,9 @@ void DiffuseRunNotes::finish() const {
   if (band_frames_ > 0)
     progress_.note(str("  (", band_frames_, " of ", frames_, " frames were a narrow band, filled with up to ",
                        most_filled_, " particles)"));
+  if (landed_ > 0)
+    progress_.note(str("  (", landed_, " diffuse particles were thrown over a tank's rim and deleted when they "
+                       "reached the ground beside it; stats.csv's landed counts them)"));
   if (scene_.flip_particles)
     progress_.note(str("  (fluid.particles = flip: particle density ", least_density_, " to ", most_density_,
                        "x the nominal over the frames)"));

@@ -4,6 +4,7 @@
 // density, unusable masses, unpaired frames, particles lost to the domain), and a summary at the end.
 // Warnings go to messages::warning, routine lines to the stage's progress (silenced by --quiet).
 #include <cstddef>
+#include <cstdint>
 
 #include "sim/core/progress.h"
 #include "sim/diffuse/simulator.h"
@@ -36,6 +37,7 @@ class DiffuseRunNotes {
   bool warned_budget_ = false, warned_cap_ = false, warned_band_skip_ = false, noted_pocket_ = false;
   bool warned_masses_ = false;
   int domain_warnings_ = 0;  // frames that lost more than 1% of what they emitted to the domain
+  uint64_t landed_ = 0;      // diffuse particles deleted on the ground beside a tank
   int unpaired_frames_ = 0;  // frames without ids whose particles could not be paired with the next's
   int band_frames_ = 0;      // frames found to be a narrow band and filled (MODEL.md §9.1)
   size_t most_filled_ = 0;

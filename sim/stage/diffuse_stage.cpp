@@ -140,6 +140,7 @@ DiffuseStageSummary run_diffuse_stage(const SimScene& scene, const SceneInputs& 
   setup.solids = inputs.solids;
   setup.bodies = scene_body_track(scene, summary.out_dir);
   setup.domain = inputs.domain;
+  setup.ground = inputs.solids.ground_below_tanks();
   setup.particles = scene.flip_particles ? FluidParticles::Flip : FluidParticles::Sph;
   setup.fill_narrow_band = scene.fill_narrow_band;
   DiffuseSimulator simulator(setup);

@@ -12,7 +12,7 @@ namespace spume {
 namespace {
 
 std::string header() {
-  std::string h = "frame,time,fluid,spray,foam,bubbles,generated,dissolved,removed,dropped,capped";
+  std::string h = "frame,time,fluid,spray,foam,bubbles,generated,dissolved,removed,landed,dropped,capped";
   for (const char* stage : kStageNames) h += std::string(",") + stage + "_ms";
   return h + ",io_ms\n";
 }
@@ -40,7 +40,7 @@ DiffuseStatsCsv::DiffuseStatsCsv(std::filesystem::path path, std::optional<int> 
 void DiffuseStatsCsv::add(const FrameStats& s, double time, double io_ms) {
   std::ostringstream out;
   out << s.frame << ',' << time << ',' << s.fluid << ',' << s.by_type[0] << ',' << s.by_type[1] << ','
-      << s.by_type[2] << ',' << s.generated << ',' << s.dissolved << ',' << s.removed << ',' << s.dropped << ',' << s.capped;
+      << s.by_type[2] << ',' << s.generated << ',' << s.dissolved << ',' << s.removed << ',' << s.landed << ',' << s.dropped << ',' << s.capped;
   char buffer[32];
   for (double ms : s.stage_ms) std::snprintf(buffer, sizeof buffer, ",%.2f", ms), out << buffer;
   std::snprintf(buffer, sizeof buffer, ",%.2f\n", io_ms);

@@ -130,7 +130,8 @@ SceneInputs read_scene_inputs(const SimScene& scene, const std::filesystem::path
     const bool tank = std::any_of(in.solids.solids().begin(), in.solids.solids().end(),
                                   [](const Solid& s) { return s.kind == Solid::Kind::Tank; });
     in.notes.push_back(str("domain (diffuse particles leaving it are deleted): ", describe_box(in.domain),
-                           tank ? ", the tank with its open top raised by its height"
+                           tank ? ", the tanks (an open one widened on each side and raised by its height, "
+                                  "for spray thrown over the rim)"
                                 : str(", the fluid's bounds over all ", frames.size(),
                                       " frames grown by their size on every side"),
                            "; set domain.min and domain.max to change it"));

@@ -351,9 +351,9 @@ TEST_F(SpumeCommand, EmissionBeyondThePerParticleCapIsCountedAndWarned) {
   EXPECT_NE(r.output.find("stats.csv 'capped'"), std::string::npos) << r.output;
   const auto stats = testing::read_csv(dir / "out/scene/stats.csv");
   ASSERT_FALSE(stats.empty());
-  ASSERT_EQ(std::vector<std::string>(stats[0].begin(), stats[0].begin() + std::min<size_t>(stats[0].size(), 11)),
+  ASSERT_EQ(std::vector<std::string>(stats[0].begin(), stats[0].begin() + std::min<size_t>(stats[0].size(), 12)),
             (std::vector<std::string>{"frame", "time", "fluid", "spray", "foam", "bubbles", "generated", "dissolved",
-                                      "removed", "dropped", "capped"}));
+                                      "removed", "landed", "dropped", "capped"}));
   const double capped = testing::column_sum(stats, "capped");
   // Each facing particle at full potential loses 20000 - 4095 = 15905 per step.
   EXPECT_GT(capped, 15905u);

@@ -66,7 +66,7 @@ TEST_F(TankOption, TheOneLineRunUsesTheTankTheFluidShowsAndNoneTurnsItOff) {
                            "-z at 0 (", "+z at 0.1 ("})
     EXPECT_NE(note.find(wall), std::string::npos) << wall << ": " << note;
   EXPECT_NE(note.find("used since no --tank was given (--tank none runs without it)"), std::string::npos) << note;
-  EXPECT_NE(r.output.find("the tank with its open top raised"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("the tanks (an open one widened on each side and raised"), std::string::npos) << r.output;
   // --tank none: no tank at all, and the caches made with the tank are not current.
   r = simulate(pattern, "--tank none");
   ASSERT_EQ(r.status, 0) << r.output;
@@ -85,7 +85,7 @@ TEST_F(TankOption, AnOpenSideKeepsTheOneLineRunWithoutATankButAutoUsesIt) {
   r = simulate(pattern, "--tank auto");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_EQ(r.output.find("not used"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("the tank with its open top raised"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("the tanks (an open one widened on each side and raised"), std::string::npos) << r.output;
 }
 
 TEST_F(TankOption, AutoAndNoneAreWordsInAnyCaseAndAnythingElseNamesTheChoices) {

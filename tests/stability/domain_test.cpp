@@ -1,8 +1,10 @@
 // Diffuse particles where they should not be: far outside the domain (removed at the first step,
 // without overflow in the grid lookups), inside solids (pushed out, even from a sphere's exact
-// centre), and in the corners of a tank (they stay inside, on every wall at once).
+// centre), in the corners of a tank (they stay inside, on every wall at once), and thrown over an
+// open tank's rim (they fall beside it to the ground before the domain deletes them).
 #include <gtest/gtest.h>
 
+#include "sim/scene/sim_scene.h"
 #include "tests/stability/stability_support.h"
 
 namespace spume {
@@ -131,6 +133,75 @@ TEST(StabilityDomain, ParticlesInTheCornersOfATankStayInside) {
       }
     }
   }
+}
+
+// Spray thrown over the rim of an open tank [0, 1]^3 with walls 0.16 m thick (2 h at r = 0.02 m),
+// ballistic (spray feels only gravity). The default domain reaches the tank's height (1 m) beyond
+// each side wall, from its floor to 1 m above the rim:
+// - A, from (0.9, 1.2) at 1.8 m/s along x, clears the wall's outer face x = 1.16 at t = 0.144 s, at
+//   y = 1.2 - g t^2 / 2 = 1.098, and reaches the ground y = 0 at t = sqrt(2.4 / g) = 0.495 s, at
+//   x = 1.79: landed, having fallen beside the tank;
+// - B, from the same point at 6 m/s, reaches the domain's side x = 2 at t = 0.183 s, at y = 1.03:
+//   removed in the air, not landed;
+// - C, dropped inside the tank, rests on its floor and stays.
+TEST(StabilityDomain, SprayOverAnOpenRimFallsBesideTheTankToTheGround) {
+  Solid tank;
+  tank.kind = Solid::Kind::Tank;
+  tank.min = Vec3f(0, 0, 0), tank.max = Vec3f(1, 1, 1);
+  tank.open_top = true;
+  tank.wall_thickness = 0.16f;  // 2 h, as the diffuse stage sets it
+  SimScene scene;
+  scene.solids = SolidSet({tank});
+  DiffuseSetup setup = stability::setup_with(0.02f, {{"k_ta", 0}, {"k_wc", 0}});
+  setup.solids = scene.solids;
+  setup.domain = default_domain(scene, Aabb());
+  setup.ground = setup.solids.ground_below_tanks();
+  EXPECT_EQ(setup.domain.min, Vec3f(-1, 0, -1));
+  EXPECT_EQ(setup.domain.max, Vec3f(2, 2, 2));
+  ASSERT_TRUE(setup.ground.has_value());
+  EXPECT_EQ(setup.ground->up_axis, 1);
+  EXPECT_EQ(setup.ground->level, 0.0f);
+
+  DiffuseSimulator sim(setup);
+  DiffuseFrame d = stability::diffuse_at({Vec3f(0.9f, 1.2f, 0.5f), Vec3f(0.9f, 1.2f, 0.5f), Vec3f(0.5f, 0.5f, 0.5f)},
+                                         DiffuseType::Spray);
+  d.velocities = {Vec3f(1.8f, 0, 0), Vec3f(6.0f, 0, 0), Vec3f::Zero()};
+  sim.set_particles(d);
+  // A little water in a far corner, so the frames have fluid; no emission.
+  const auto fluid = pool(Vec3f(0.02f, 0.02f, 0.02f), Vec3f(0.1f, 0.06f, 0.1f), 30);  // 0.58 s
+  const auto run = stability::run_checked(sim, fluid, true);
+  EXPECT_EQ(run.removed, 2u);
+  EXPECT_EQ(run.landed, 1u);
+  ASSERT_EQ(sim.particles().size(), 1u);
+  EXPECT_NEAR(sim.particles().positions[0].y(), 0.0f, 1e-3f);
+  // A's last frame above the ground: beside the tank, beyond its wall, within a frame's fall (under
+  // 0.1 m at 4.9 m/s) of the ground.
+  float lowest_outside = 2.0f;
+  for (const DiffuseFrame& f : run.frames)
+    for (size_t i = 0; i < f.size(); ++i)
+      if (f.positions[i].x() > 1.16f) lowest_outside = std::min(lowest_outside, f.positions[i].y());
+  EXPECT_LT(lowest_outside, 0.1f);
+  EXPECT_GT(lowest_outside, 0.0f);
+}
+
+TEST(StabilityDomain, AClosedTankIsItsOwnDomainAndGroundlessTanksHaveNone) {
+  Solid tank;
+  tank.kind = Solid::Kind::Tank;
+  tank.min = Vec3f(1, 2, 3), tank.max = Vec3f(2, 4, 6);
+  tank.open_top = false;
+  SimScene scene;
+  scene.solids = SolidSet({tank});
+  const Aabb closed = default_domain(scene, Aabb());
+  EXPECT_EQ(closed.min, tank.min);
+  EXPECT_EQ(closed.max, tank.max);
+  // Two tanks, the lower floor is the ground; tanks that disagree on up have none.
+  Solid lower = tank;
+  lower.min.y() = -1.0f;
+  EXPECT_EQ(SolidSet({tank, lower}).ground_below_tanks()->level, -1.0f);
+  Solid sideways = tank;
+  sideways.up_axis = 2;
+  EXPECT_FALSE(SolidSet({tank, sideways}).ground_below_tanks().has_value());
+  EXPECT_FALSE(SolidSet().ground_below_tanks().has_value());
 }
 
 }  // namespace

@@ -50,7 +50,7 @@ inline DiffuseSetup setup_with(float r, const Json& diffuse = Json::object(), do
 
 struct RunCheck {
   size_t max_particles = 0;  // the most diffuse particles alive at any frame
-  uint64_t generated = 0, removed = 0, dropped = 0;
+  uint64_t generated = 0, removed = 0, landed = 0, dropped = 0;
   std::vector<DiffuseFrame> frames;  // every frame's output, when kept
 };
 
@@ -71,6 +71,7 @@ inline RunCheck run_checked(DiffuseSimulator& sim, const std::vector<FluidFrame>
                                            });
     r.generated += s.generated;
     r.removed += s.removed;
+    r.landed += s.landed;
     r.dropped += s.dropped;
   }
   EXPECT_TRUE(all_finite(sim.particles()));
