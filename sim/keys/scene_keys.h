@@ -219,7 +219,7 @@ inline constexpr auto all = std::to_array<const KeySpec*>(
 namespace domain {
 inline constexpr KeySpec min{.path = "domain.min", .type = Vec3, .unit = "m", .lo = -1e6, .hi = 1e6,
                              .lo_bound = Closed, .hi_bound = Closed,
-                             .default_text = "the tanks (open top raised by their height), else the fluid's "
+                             .default_text = "the tanks (an open one widened and raised by its height), else the fluid's "
                                              "bounds over every frame grown by their size (at least 8 h)",
                              .doc = "diffuse particles outside [min, max] are deleted"};
 inline constexpr KeySpec max{.path = "domain.max", .type = Vec3, .unit = "m", .lo = -1e6, .hi = 1e6,
