@@ -226,6 +226,7 @@ double FluidSolver::step_to(double target) {
     parallel_for(n, 4096, [&](size_t b, size_t e) {
       for (size_t i = b; i < e; ++i) p.x[i] += fdt * p.v[i];
     });
+    check_finite();  // before the bodies take the fluid's loads: a body at a NaN pose cannot be placed
     if (coupled) {
       std::vector<Vec3d> force, torque;
       loads_.totals(dt, force, torque);
@@ -247,11 +248,9 @@ double FluidSolver::step_to(double target) {
   return dt;
 }
 
-void FluidSolver::project_out_of_solids() {
-  fluid::Particles& p = particles_;
+void FluidSolver::check_finite() const {
+  const fluid::Particles& p = particles_;
   const size_t n = p.size();
-  const SolidSet now = solids_now();
-  const float skin = params_.push_out_skin * params_.particle_radius;
   // Counts are exact integers in double, so the sum is thread-independent anyway.
   const double bad = fluid::chunked_sum(n, [&](size_t b, size_t e) {
     double count = 0.0;
@@ -264,6 +263,13 @@ void FluidSolver::project_out_of_solids() {
         throw fluid::BlowUp(str("fluid solver: particle ", p.id[i], " has a non-finite position or velocity at t = ",
                                 time_, " s (", uint64_t(bad), " particles in all)"),
                             "; try a smaller max_dt or cfl");
+}
+
+void FluidSolver::project_out_of_solids() {
+  fluid::Particles& p = particles_;
+  const size_t n = p.size();
+  const SolidSet now = solids_now();
+  const float skin = params_.push_out_skin * params_.particle_radius;
   if (now.empty()) return;
   const double moved = fluid::chunked_sum(n, [&](size_t b, size_t e) {
     double count = 0.0;

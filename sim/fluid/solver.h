@@ -108,6 +108,8 @@ class FluidSolver {
  private:
   double step_to(double target);  // one step, shortened to land on target
   void update_neighbourhoods();
+  // Throws BlowUp when a particle's position or velocity is not finite.
+  void check_finite() const;
   void project_out_of_solids();
   // Per solid: where its boundary particles are at time t (kinematic motions, current body poses).
   std::vector<fluid::SolidPlacement> placements_at(double t) const;

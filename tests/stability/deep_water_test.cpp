@@ -178,6 +178,35 @@ TEST(StabilityDeepWater, CubeATenthAsDenseAsWaterFloats) {
   EXPECT_NEAR(drop_cube(100.0f, 1.5), 0.150625 - 0.01, 0.01);
 }
 
+// The same cube ten times as dense as water, stepped to frames of 1/100 s: as it lands, the film
+// under it is crushed and a step turns the whole fluid to NaN. That fluid once reached Bullet as the
+// cube's load before the finite check ran, and placing the cube at a NaN pose crashed the process
+// (t = 0.179 s). Now the step is refused as a blow-up and taken again with shorter steps; the run
+// goes on (or, if no step cures it, stops with the blow-up's message), never crashes.
+TEST(StabilityDeepWater, ADenseCubeLandingNeverReachesTheBodiesAsNaN) {
+  FluidSolverParams p;
+  p.particle_radius = 0.01f;
+  const Solid tank = tank_of(Vec3f(0, 0, 0), Vec3f(0.4f, 0.5f, 0.4f));
+  Solid cube;
+  cube.kind = Solid::Kind::Box;
+  cube.min = Vec3f(0.15f, 0.15f, 0.15f), cube.max = Vec3f(0.25f, 0.25f, 0.25f);
+  cube.dynamics.enabled = true;
+  cube.dynamics.density = 10000.0f;
+  FluidSolver solver(p, {FluidBlock{Vec3f(0, 0, 0), Vec3f(0.4f, 0.15f, 0.4f)}}, SolidSet({tank, cube}));
+  try {
+    for (int k = 1; k <= 25; ++k) solver.advance_to(k / 100.0);
+  } catch (const fluid::BlowUp& e) {
+    SUCCEED() << e.what();
+    return;
+  }
+  const BodyPose& pose = solver.body_poses()[0];
+  EXPECT_TRUE(finite(pose.position) && finite(pose.velocity));
+  EXPECT_GE(pose.position.y() - 0.05f, -1e-3f);  // on the floor
+  EXPECT_LT(pose.position.y() - 0.05f, 0.02f);
+  const FluidFrame f = solver.frame(25);
+  for (size_t i = 0; i < f.size(); ++i) ASSERT_TRUE(finite(f.positions[i]) && finite(f.velocities[i])) << i;
+}
+
 // Ten times the water's density: it sinks to the floor (but for a layer of particles under it). A
 // known failure, listed and not run: the film it squeezes against the floor is driven out at
 // 50-100 m/s and no shorter step cures it (from three times the water's density; twice passes,
