@@ -18,6 +18,21 @@ btTransform pose_transform(const Vec3f& centre, const Quatf& q) {
   return btTransform(btQuaternion(q.x(), q.y(), q.z(), q.w()), bt(centre));
 }
 
+// Collision groups. The bodies meet each other and one copy of every static and kinematic solid:
+// the copy grown by the skin, or, for a body that starts within the skin of one (a tower standing on
+// the floor), the solid as it is, which it rests on as placed.
+constexpr int kBodyGroup = 64, kSkinnedGroup = 128, kPlainGroup = 256;
+
+// Whether any contact the test finds goes deeper than touching.
+struct OverlapCount : btCollisionWorld::ContactResultCallback {
+  int overlaps = 0;
+  btScalar addSingleResult(btManifoldPoint& cp, const btCollisionObjectWrapper*, int, int, const btCollisionObjectWrapper*,
+                           int, int) override {
+    overlaps += cp.getDistance() < 0;
+    return 0;
+  }
+};
+
 }  // namespace
 
 struct RigidBodies::World {
@@ -28,10 +43,11 @@ struct RigidBodies::World {
   btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
   std::vector<std::unique_ptr<btRigidBody>> objects;  // every Bullet body, static ones included
+  std::vector<std::pair<int, int>> filters;           // per object: its collision group and mask
   std::vector<btRigidBody*> bodies;                   // the dynamic ones, in body order
   struct Kinematic {
-    btRigidBody* object;
-    const Solid* solid;  // points into `solids`
+    btRigidBody* object;  // each copy (skinned, plain) is listed
+    const Solid* solid;   // points into `solids`
   };
   std::vector<Kinematic> kinematic;
   std::vector<Solid> solids;  // the scene's solids at their initial pose
@@ -40,19 +56,22 @@ struct RigidBodies::World {
     for (auto& o : objects) world.removeRigidBody(o.get());
   }
 
-  btCollisionShape* shape_of(const Solid& s, float margin) {
+  // `grow`: m added to the solid on every side.
+  btCollisionShape* shape_of(const Solid& s, float margin, float grow) {
     if (s.kind == Solid::Kind::Sphere) {
-      shapes.push_back(std::make_unique<btSphereShape>(s.radius));
+      shapes.push_back(std::make_unique<btSphereShape>(s.radius + grow));
     } else {
-      auto box = std::make_unique<btBoxShape>(bt(Vec3f(0.5f * (s.max - s.min))));
-      const Vec3f half = 0.5f * (s.max - s.min);
+      const Vec3f half = 0.5f * (s.max - s.min) + Vec3f::Constant(grow);
+      auto box = std::make_unique<btBoxShape>(bt(half));
       box->setMargin(std::min(margin, 0.25f * half.minCoeff()));  // btBoxShape keeps its outer size
       shapes.push_back(std::move(box));
     }
     return shapes.back().get();
   }
 
-  btRigidBody* add(btCollisionShape* shape, const btTransform& where, double mass, float friction) {
+  // `mask` < 0: a body, which meets the grown solids unless it starts within their skin (then the
+  // solids as they are: pushed out of the skin, a body placed on the floor would leap off it).
+  btRigidBody* add(btCollisionShape* shape, const btTransform& where, double mass, float friction, int group, int mask) {
     btVector3 inertia(0, 0, 0);
     if (mass > 0.0) shape->calculateLocalInertia(mass, inertia);
     btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, shape, inertia);
@@ -63,12 +82,28 @@ struct RigidBodies::World {
     info.m_angularDamping = 0.0;
     objects.push_back(std::make_unique<btRigidBody>(info));
     btRigidBody* o = objects.back().get();
-    world.addRigidBody(o);
+    if (mask < 0) {
+      OverlapCount test;
+      test.m_collisionFilterGroup = kBodyGroup;
+      test.m_collisionFilterMask = kSkinnedGroup;
+      world.contactTest(o, test);
+      mask = kBodyGroup | (test.overlaps ? kPlainGroup : kSkinnedGroup);
+    }
+    filters.emplace_back(group, mask);
+    world.addRigidBody(o, group, mask);
     return o;
   }
 
-  // Five or six slabs as thick as the tank is large, outside its walls and overlapping at the edges.
-  void add_tank(const Solid& s, float margin) {
+  // A static or kinematic solid, twice: grown by `skin`, and as it is (once without a skin).
+  std::vector<btRigidBody*> add_static(const Solid& s, const btTransform& where, float margin, float skin) {
+    if (!(skin > 0.0f)) return {add(shape_of(s, margin, 0.0f), where, 0.0, 1.0f, kSkinnedGroup | kPlainGroup, kBodyGroup)};
+    return {add(shape_of(s, margin, skin), where, 0.0, 1.0f, kSkinnedGroup, kBodyGroup),
+            add(shape_of(s, margin, 0.0f), where, 0.0, 1.0f, kPlainGroup, kBodyGroup)};
+  }
+
+  // Five or six slabs as thick as the tank is large, outside its walls and overlapping at the edges,
+  // each reaching `skin` into the tank.
+  void add_tank(const Solid& s, float margin, float skin) {
     const Vec3f extent = s.max - s.min;
     const float thick = extent.maxCoeff();
     for (int a = 0; a < 3; ++a)
@@ -82,7 +117,7 @@ struct RigidBodies::World {
         slab.kind = Solid::Kind::Box;
         slab.min = centre - half;
         slab.max = centre + half;
-        add(shape_of(slab, margin), pose_transform(centre, Quatf::Identity()), 0.0, 1.0f);
+        add_static(slab, pose_transform(centre, Quatf::Identity()), margin, skin);
       }
   }
 };
@@ -92,7 +127,7 @@ RigidBodies::~RigidBodies() = default;
 RigidBodies::RigidBodies(RigidBodies&&) noexcept = default;
 RigidBodies& RigidBodies::operator=(RigidBodies&&) noexcept = default;
 
-RigidBodies::RigidBodies(const SolidSet& solids, const Vec3f& gravity, float margin) {
+RigidBodies::RigidBodies(const SolidSet& solids, const Vec3f& gravity, float margin, float skin) {
   solids.validate();
   body_of_solid_.assign(solids.solids().size(), -1);
   if (!solids.any_dynamic()) return;
@@ -100,16 +135,27 @@ RigidBodies::RigidBodies(const SolidSet& solids, const Vec3f& gravity, float mar
   World& w = *world_;
   w.solids = solids.solids();
   w.world.setGravity(bt(gravity));
+  // The static and kinematic solids first: each body tests whether it starts within their skin.
+  for (const Solid& s : w.solids) {
+    if (s.kind == Solid::Kind::Tank) {
+      w.add_tank(s, margin, skin);
+    } else if (!s.dynamics.enabled) {
+      for (btRigidBody* o : w.add_static(s, pose_transform(s.centre(), s.orientation), margin, skin))
+        if (s.motion.moving()) {
+          o->setCollisionFlags(o->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+          o->setActivationState(DISABLE_DEACTIVATION);
+          o->setWorldTransform(pose_transform(s.centre() + s.motion.offset(0.0), s.orientation));
+          o->setInterpolationWorldTransform(o->getWorldTransform());
+          w.kinematic.push_back({o, &s});
+        }
+    }
+  }
   for (size_t i = 0; i < w.solids.size(); ++i) {
     const Solid& s = w.solids[i];
-    if (s.kind == Solid::Kind::Tank) {
-      w.add_tank(s, margin);
-      continue;
-    }
     const btTransform where = pose_transform(s.centre(), s.orientation);
     if (s.dynamics.enabled) {
       const double mass = s.dynamics.mass > 0.0f ? double(s.dynamics.mass) : double(s.dynamics.density) * s.volume();
-      btRigidBody* body = w.add(w.shape_of(s, margin), where, mass, s.dynamics.friction);
+      btRigidBody* body = w.add(w.shape_of(s, margin, 0.0f), where, mass, s.dynamics.friction, kBodyGroup, -1);
       body->setActivationState(DISABLE_DEACTIVATION);  // the fluid may push a body at rest at any time
       body_of_solid_[i] = int(w.bodies.size());
       w.bodies.push_back(body);
@@ -119,15 +165,6 @@ RigidBodies::RigidBodies(const SolidSet& solids, const Vec3f& gravity, float mar
       pose.position = s.centre();
       pose.orientation = s.orientation;
       poses_.push_back(pose);
-    } else {
-      btRigidBody* o = w.add(w.shape_of(s, margin), where, 0.0, 1.0f);
-      if (s.motion.moving()) {
-        o->setCollisionFlags(o->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
-        o->setActivationState(DISABLE_DEACTIVATION);
-        o->setWorldTransform(pose_transform(s.centre() + s.motion.offset(0.0), s.orientation));
-        o->setInterpolationWorldTransform(o->getWorldTransform());
-        w.kinematic.push_back({o, &s});
-      }
     }
   }
 }
@@ -181,7 +218,8 @@ void RigidBodies::reset(const std::vector<BodyPose>& poses, double t) {
     m.object->setWorldTransform(pose_transform(m.solid->centre() + m.solid->motion.offset(t), m.solid->orientation));
     m.object->setInterpolationWorldTransform(m.object->getWorldTransform());
   }
-  for (auto& o : w.objects) w.world.addRigidBody(o.get());
+  for (size_t k = 0; k < w.objects.size(); ++k)
+    w.world.addRigidBody(w.objects[k].get(), w.filters[k].first, w.filters[k].second);
   poses_ = poses;
 }
 

@@ -2,7 +2,7 @@
 // The dynamic solids of a scene as rigid bodies, simulated by Bullet (btDiscreteDynamicsWorld, box
 // and sphere shapes): gravity, the forces and torques the fluid exerts (fluid/coupling.h), and
 // contacts with each other, the tank walls, static solids and kinematic solids (Bullet kinematic
-// bodies following their motion). Contacts have restitution 0 and Coulomb friction (a body's
+// bodies following their motion; these three grown by a skin, see the constructor). Contacts have restitution 0 and Coulomb friction (a body's
 // `friction`; static and kinematic solids have 1, and Bullet multiplies the two coefficients).
 //
 // Bullet is only seen by rigid_bodies.cpp. It runs single-threaded and is deterministic for identical
@@ -21,8 +21,11 @@ class RigidBodies {
   RigidBodies();  // no bodies
   // One body per dynamic solid of `solids`, in solid order, at its initial pose and at rest.
   // `margin` (m): Bullet's collision margin for boxes (kept inside the box, so the contact surface
-  // stays the box's); use a fraction of the particle radius. Throws Error for invalid solids.
-  RigidBodies(const SolidSet& solids, const Vec3f& gravity, float margin);
+  // stays the box's); use a fraction of the particle radius. `skin` (m): how far the bodies are kept
+  // from the tanks' walls and the static and kinematic solids (each grown by it for Bullet): the
+  // film of water a body lands on cannot drain thinner than a particle, and a body let closer
+  // crushes it (MODEL.md §10). Bodies touch each other. Throws Error for invalid solids.
+  RigidBodies(const SolidSet& solids, const Vec3f& gravity, float margin, float skin = 0.0f);
   ~RigidBodies();
   RigidBodies(RigidBodies&&) noexcept;
   RigidBodies& operator=(RigidBodies&&) noexcept;

@@ -42,7 +42,7 @@ FluidSolver::FluidSolver(FluidSolverParams params, const std::vector<FluidBlock>
   const SolidSet now = solids_.at_time(0.0);
   particles_ = fluid::fill_blocks(blocks, r, now, params_.start_clearance * r, stats_.removed_at_start);
   if (particles_.size() == 0) fail("fluid solver: the fluid blocks hold no particles at radius ", r, " m");
-  bodies_ = fluid::RigidBodies(solids_, params_.gravity, 0.5f * r);
+  bodies_ = fluid::RigidBodies(solids_, params_.gravity, 0.5f * r, 2.0f * r);
   coupling_.body_of_solid.resize(solids_.solids().size());
   for (size_t s = 0; s < solids_.solids().size(); ++s) coupling_.body_of_solid[s] = bodies_.body_of_solid(s);
   for (const BodyPose& pose : bodies_.poses()) {

@@ -153,11 +153,11 @@ TEST(FluidFloatingBox, DraftGrowsWithTheBoxDensityAsArchimedesSaysWithEachPartic
 
 TEST(FluidFloatingBox, HeavyBoxSinksToTheFloor) {
   const DropResult run = drop_box(2000.0f, 0.12f, 0.0f, 1.5);
-  // On the floor (y = 0) but for at most one layer of particles (2r thick) trapped under it: nothing
-  // lets that last layer drain from under a flat box at this resolution.
+  // On the floor (y = 0) but for one layer of particles (2r thick) under it: the bodies keep that
+  // skin from the solids (rigid_bodies.h), since nothing lets the last layer drain from under a flat
+  // box at this resolution.
   RecordProperty("bottom_mm", std::to_string(1e3 * mean_of_last(run.bottom, 10)));
-  EXPECT_GE(mean_of_last(run.bottom, 10), -1e-3f);
-  EXPECT_LT(mean_of_last(run.bottom, 10), 2.0f * kRadius);
+  EXPECT_NEAR(mean_of_last(run.bottom, 10), 2.0f * kRadius, 0.1f * kRadius);
   // At rest and flat at the end (the impact may throw it about first, see solver.h).
   const auto [lo, hi] = std::minmax_element(run.bottom.end() - 10, run.bottom.end());
   EXPECT_LT(*hi - *lo, 0.2f * kRadius);

@@ -1,5 +1,6 @@
 // Dynamic solids without fluid (fluid/rigid_bodies.h, Bullet): free fall, applied force and torque
-// against Newton's laws in closed form, and resting contact on a tank floor.
+// against Newton's laws in closed form, resting contact on a tank floor, and the skin that keeps a
+// falling body a film's thickness from the solids while a body placed on them stays where it is.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -91,6 +92,44 @@ TEST(RigidBodies, BoxComesToRestOnTheTankFloor) {
   EXPECT_NEAR(pose.position.y(), 0.05f, 1e-3f);  // bottom face on the floor
   EXPECT_NEAR(pose.velocity.norm(), 0.0f, 1e-3f);
   EXPECT_NEAR(std::abs(pose.orientation.w()), 1.0f, 1e-4f);
+}
+
+// Dropped from 0.25 m above the floor, a box comes to rest with its bottom face `skin` above the
+// floor, and one from 0.3 m beside a static box rests on that box's top with the same gap.
+TEST(RigidBodies, AFallingBoxLandsTheSkinAwayFromTheFloorAndStaticSolids) {
+  const float skin = 0.02f;
+  Solid tank;
+  tank.kind = Solid::Kind::Tank;
+  tank.min = Vec3f(-1, 0, -1);
+  tank.max = Vec3f(1, 1, 1);
+  Solid step;
+  step.kind = Solid::Kind::Box;
+  step.min = Vec3f(0.4f, 0, -0.2f), step.max = Vec3f(0.8f, 0.1f, 0.2f);
+  RigidBodies bodies(SolidSet({tank, step, box_at(Vec3f(0, 0.3f, 0), Vec3f(0.2f, 0.1f, 0.2f), 500),
+                               box_at(Vec3f(0.6f, 0.45f, 0), Vec3f(0.2f, 0.1f, 0.2f), 500)}),
+                     Vec3f(0, -9.81f, 0), 0.005f, skin);
+  run(bodies, 1.0, 0.004, {Vec3d::Zero(), Vec3d::Zero()}, {Vec3d::Zero(), Vec3d::Zero()});
+  EXPECT_NEAR(bodies.poses()[0].position.y(), 0.05f + skin, 1e-3f);
+  EXPECT_NEAR(bodies.poses()[1].position.y(), 0.1f + 0.05f + skin, 1e-3f);
+  for (const BodyPose& pose : bodies.poses()) EXPECT_NEAR(pose.velocity.norm(), 0.0f, 1e-3f);
+}
+
+// A stack of three boxes placed on the floor (within the skin from the start) stays exactly where it
+// was placed: pushed out of the skin, the bottom box would leap off the floor (3.6 m/s, measured
+// before the bodies placed within it met the solids as they are).
+TEST(RigidBodies, AStackPlacedOnTheFloorStaysWhereItWasPlaced) {
+  Solid tank;
+  tank.kind = Solid::Kind::Tank;
+  tank.min = Vec3f(-1, 0, -1);
+  tank.max = Vec3f(1, 1, 1);
+  std::vector<Solid> solids{tank};
+  for (int k = 0; k < 3; ++k) solids.push_back(box_at(Vec3f(0, 0.04f + 0.08f * k, 0), Vec3f::Constant(0.08f), 700));
+  RigidBodies bodies(SolidSet(solids), Vec3f(0, -9.81f, 0), 0.005f, 0.02f);
+  run(bodies, 0.5, 0.004, std::vector<Vec3d>(3, Vec3d::Zero()), std::vector<Vec3d>(3, Vec3d::Zero()));
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(bodies.poses()[size_t(k)].position.y(), 0.04f + 0.08f * k, 1e-4f) << k;
+    EXPECT_NEAR(bodies.poses()[size_t(k)].velocity.norm(), 0.0f, 1e-3f) << k;
+  }
 }
 
 TEST(RigidBodies, RejectsInvalidDynamicSolids) {
