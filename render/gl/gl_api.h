@@ -25,6 +25,8 @@
   X(glVertexAttribPointer) X(glViewport) X(OSMesaCreateContextAttribs) X(OSMesaDestroyContext) \
   X(OSMesaGetCurrentContext) X(OSMesaMakeCurrent)
 
+#include <span>
+
 namespace spume::gl {
 
 struct Functions {
@@ -36,6 +38,9 @@ struct Functions {
 // libOSMesa's entry points, the library opened on the first call (thread-safe). Throws Error naming
 // the library and what is missing when it cannot be opened or lacks an entry point.
 const Functions& functions();
+// The entry points from the first of `libraries` that opens (what functions() does with
+// libOSMesa's names); throws as functions() does.
+Functions load_functions(std::span<const char* const> libraries);
 
 }  // namespace spume::gl
 

@@ -1,5 +1,6 @@
 #include <dlfcn.h>
 
+#include <span>
 #include <string>
 
 #include "render/gl/gl_api.h"
@@ -11,12 +12,18 @@ namespace {
 // Debian 12's libosmesa6; the unversioned name where only the development link is present.
 constexpr const char* kLibraries[] = {"libOSMesa.so.8", "libOSMesa.so"};
 
-Functions open_library() {
+}  // namespace
+
+Functions load_functions(std::span<const char* const> libraries) {
   void* library = nullptr;
+  const char* opened = nullptr;
   std::string errors;
-  for (const char* name : kLibraries) {
+  for (const char* name : libraries) {
     library = dlopen(name, RTLD_NOW | RTLD_LOCAL);
-    if (library) break;
+    if (library) {
+      opened = name;
+      break;
+    }
     const char* why = dlerror();
     errors += str(errors.empty() ? "" : "; ", why ? why : name);
   }
@@ -24,18 +31,19 @@ Functions open_library() {
     fail("OSMesa, which draws the fluid's surface, could not be loaded (", errors,
          "); install it (Debian: apt-get install libosmesa6)");
   Functions f;
-#define SPUME_GL_LOOKUP(name)                                                          \
-  f.p_##name = reinterpret_cast<decltype(f.p_##name)>(dlsym(library, #name));          \
-  if (!f.p_##name) fail("OSMesa: ", kLibraries[0], " has no entry point " #name);
+#define SPUME_GL_LOOKUP(name)                                                                      \
+  f.p_##name = reinterpret_cast<decltype(f.p_##name)>(dlsym(library, #name));                      \
+  if (!f.p_##name) {                                                                               \
+    dlclose(library);                                                                              \
+    fail("OSMesa: ", opened, " has no entry point " #name " (is it OSMesa? Debian: libosmesa6)"); \
+  }
   SPUME_GL_FUNCTIONS(SPUME_GL_LOOKUP)
 #undef SPUME_GL_LOOKUP
   return f;  // the library stays open for the process's life
 }
 
-}  // namespace
-
 const Functions& functions() {
-  static const Functions loaded = open_library();  // thread-safe; a failure is retried on the next call
+  static const Functions loaded = load_functions(kLibraries);  // thread-safe; a failure is retried on the next call
   return loaded;
 }
 
