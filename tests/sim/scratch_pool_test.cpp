@@ -5,8 +5,12 @@
 // fresh one.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <fstream>
+#include <string>
+#include <vector>
 
 #include "sim/io/huge_buffer.h"
 
@@ -115,6 +119,44 @@ TEST_F(ScratchPool, AGrowingRequestGrowsABlockOfItsOwnKindFirst) {
     scratch_give_back(grown.block, grown.bytes, writes);
     scratch_give_back(other.block, other.bytes);
   }
+}
+
+// The cap is a third of the machine's memory (MemTotal), at least 2 GiB: a 100M-particle frame's
+// encoder takes about 7 GiB of blocks, which a fixed 2 GiB cap handed back to be cleared again
+// every frame.
+TEST_F(ScratchPool, TheCapIsAThirdOfTheMachinesMemoryAndAtLeastTwoGiB) {
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  size_t kib = 0;
+  while (meminfo >> key && key != "MemTotal:") meminfo.ignore(256, '\n');
+  ASSERT_TRUE(meminfo >> kib);
+  const size_t third = kib * 1024 / 3;
+  EXPECT_NEAR(double(scratch_pool_cap()), double(std::max(size_t(2) << 30, third)), 3.0 * 4096);
+}
+
+// Blocks given back beyond the cap: the oldest are handed to the system until the rest fit, so the
+// pool keeps at most the cap, and (blocks of a quarter of it) at least half of it. The blocks are
+// address space only: nothing here writes them.
+TEST_F(ScratchPool, BlocksBeyondTheCapAreReleasedOldestFirst) {
+  const size_t quarter = scratch_pool_cap() / 4;
+  std::vector<Taken> taken;
+  for (int k = 0; k < 5; ++k) taken.push_back(take(quarter - 4 * kMiB));
+  for (const Taken& t : taken) scratch_give_back(t.block, t.bytes);
+  EXPECT_LE(scratch_pool_kept_bytes(), scratch_pool_cap());
+  EXPECT_GE(scratch_pool_kept_bytes(), scratch_pool_cap() / 2);
+  // The blocks kept are the newest: taken again (as many as are kept), they are the last given back.
+  const size_t kept = scratch_pool_kept_bytes() / taken[0].bytes;
+  ASSERT_GE(kept, 1u);
+  std::vector<void*> again, newest;
+  for (size_t k = 0; k < kept; ++k) {
+    again.push_back(take(quarter - 4 * kMiB).block);
+    newest.push_back(taken[taken.size() - kept + k].block);
+  }
+  std::sort(again.begin(), again.end());
+  std::sort(newest.begin(), newest.end());
+  EXPECT_EQ(again, newest);
+  for (void* block : again) scratch_give_back(block, taken[0].bytes);
+  scratch_pool_release();
 }
 
 }  // namespace
