@@ -126,6 +126,7 @@ EmissionResult emit_diffuse(const FluidStepState& state, const FormationPotentia
     for (uint64_t c = 0; c < result.requested; ++c) slot[c] = keep[c] ? next++ : UINT64_MAX;
   }
   out.resize(base + accepted);
+  buffers.parents.resize(accepted);
   result.emitted = accepted;
   parallel_for(n, 1024, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
@@ -141,6 +142,7 @@ EmissionResult emit_diffuse(const FluidStepState& state, const FormationPotentia
         sample_cylinder(state.positions[i], state.motion[i], state.velocities[i], dt, particle_radius, u,
                         out.positions[k], out.velocities[k]);
         out.ids[k] = diffuse_id(state.ids[i], step, s);
+        buffers.parents[at] = uint32_t(i);
         out.lifetimes[k] = lifetime;
         out.types[k] = DiffuseType::Spray;  // provisional: classified before any use
       }

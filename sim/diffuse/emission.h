@@ -43,6 +43,7 @@ void sample_cylinder(const Vec3f& x_f, const Vec3f& motion, const Vec3f& v_f, fl
 struct EmissionBuffers {
   std::vector<uint32_t> counts;
   std::vector<uint64_t> offsets;
+  std::vector<uint32_t> parents;  // per particle the last call appended: its fluid particle's index in the state
 };
 
 // Appends this step's new particles to `out` (ids, positions, velocities, lifetimes; types are set by

@@ -195,12 +195,18 @@ void DiffuseSimulator::step(const FluidStepState& state, uint32_t step, float dt
     if (p.max_particles) budget.max_particles = *p.max_particles + (old_count - survivors);
     emitted = emit_diffuse(state, potentials_, budget, step, dt, setup_.fluid.particle_radius, particles_,
                            emission_buffers_);
-    // A newborn sampled around a fluid particle that hugs a wall may start inside it.
+    // A newborn's cylinder around a fluid particle beside a wall may reach into or through it (along
+    // the particle's motion, into the floor where a jet lands): it stops at the wall on its fluid
+    // particle's side. push_out alone would send one deeper than half a tank wall's thickness outside.
     if (!solids.empty())
       parallel_for(particles_.size() - old_count, 4096, [&](size_t b, size_t e) {
-        for (size_t k = old_count + b; k < old_count + e; ++k)
-          if (!clearance.clear(particles_.positions[k]))
-            solids.push_out(particles_.positions[k], particles_.velocities[k], skin);
+        for (size_t k = old_count + b; k < old_count + e; ++k) {
+          Vec3f& x = particles_.positions[k];
+          if (clearance.clear(x)) continue;
+          solids.stop_at_tank_walls(state.positions[emission_buffers_.parents[k - old_count]], x,
+                                    particles_.velocities[k], skin);
+          solids.push_out(x, particles_.velocities[k], skin);
+        }
       });
   }
   room_.check(particles_.size(), "");  // the stage names the frame
