@@ -34,6 +34,21 @@ struct Grid {
   }
 };
 
+// Where the study counts the material: the tanks, an open top raised by the tank's height, else the
+// domain. The domain reaches beside an open tank too, for spray on its way to the ground; counting
+// there would only coarsen the cells over the water.
+Aabb study_region(const SceneInputs& inputs) {
+  Aabb box;
+  for (const Solid& s : inputs.solids.solids())
+    if (s.kind == Solid::Kind::Tank) {
+      Vec3f top = s.max;
+      if (s.open_top) top[s.up_axis] += s.max[s.up_axis] - s.min[s.up_axis];
+      box.extend(s.min);
+      box.extend(top);
+    }
+  return box.empty() ? inputs.domain : box;
+}
+
 }  // namespace
 
 SceneWindow scene_runs(const StudyContext& c, const SceneSetup& setup, int last, int frames) {
@@ -52,13 +67,14 @@ SceneWindow scene_runs(const StudyContext& c, const SceneSetup& setup, int last,
   const SceneInputs inputs = read_scene_inputs(scene, setup.out_root, true);
   base.solids = inputs.solids;
   base.domain = inputs.domain;
-  // Coarse grid: 16 cells along the domain's longest side.
+  // Coarse grid: 16 cells along the study region's longest side.
+  const Aabb region = study_region(inputs);
   Grid grid;
-  grid.origin = base.domain.min;
-  grid.cell = (base.domain.max - base.domain.min).maxCoeff() / 16.0f;
-  grid.nx = std::max(1, int(std::ceil((base.domain.max.x() - base.domain.min.x()) / grid.cell)));
-  grid.ny = std::max(1, int(std::ceil((base.domain.max.y() - base.domain.min.y()) / grid.cell)));
-  grid.nz = std::max(1, int(std::ceil((base.domain.max.z() - base.domain.min.z()) / grid.cell)));
+  grid.origin = region.min;
+  grid.cell = (region.max - region.min).maxCoeff() / 16.0f;
+  grid.nx = std::max(1, int(std::ceil((region.max.x() - region.min.x()) / grid.cell)));
+  grid.ny = std::max(1, int(std::ceil((region.max.y() - region.min.y()) / grid.cell)));
+  grid.nz = std::max(1, int(std::ceil((region.max.z() - region.min.z()) / grid.cell)));
 
   SceneWindow window;
   window.first = first, window.last = last;
