@@ -15,8 +15,12 @@ namespace {
 // Bump when a change of spume's code makes old caches wrong.
 // 2: walls count only where wet, emission along the motion, the whole sequence's domain.
 constexpr int kFluidCacheGeneration = 2;
-// 3: a tank's domain reaches beside it, where spray thrown over the rim falls.
+// 3: a tank's domain reaches beside it, where spray thrown over the rim falls; newborns sampled into
+// a wall stay on their fluid particle's side.
 constexpr int kDiffuseCacheGeneration = 3;
+// Solver scenes with dynamic bodies only, so that the others keep their fluid caches.
+// 2: the bodies keep a skin of 2r from the solids (fluid/rigid_bodies.h).
+constexpr int kBodiesGeneration = 2;
 
 Json with_generation(Json keys, int generation) {
   keys["spume_cache_generation"] = generation;
@@ -169,6 +173,8 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
     if (!scene.read.stored_masses) keys["fluid_import"]["masses"] = "implied";
     if (scene.fluid.fps != fluid.number(k::fluid::fps)) keys["fluid_import"]["fps"] = scene.fluid.fps;
   }
+  if (scene.source == FluidSourceKind::Solver && scene.solids.any_dynamic())
+    keys["spume_bodies_generation"] = kBodiesGeneration;
   // No output.* key: the exports are made from the caches, with records of their own
   // (io/frame_export.h), so turning one on or off re-simulates nothing.
   scene.fluid_keys = with_generation(keys, kFluidCacheGeneration);

@@ -136,6 +136,24 @@ TEST(BodyTrackStage, FluidStageWritesTheSolversPosesPerFrame) {
   EXPECT_LT((at_end.solids()[1].centre() - track.frames[3][0].position).norm(), 1e-6f);
 }
 
+// The bodies' skin (fluid/rigid_bodies.h) changed how solver scenes with dynamic bodies move, so their
+// fluid keys carry a generation of their own: caches made before it are stale, while a scene without
+// bodies keeps its caches.
+TEST(BodyTrackStage, OnlyScenesWithBodiesCarryTheBodiesGeneration) {
+  Json json = Json::parse(R"({
+    "name": "drop",
+    "fluid": {"source": "solver", "radius": 0.025, "fps": 20, "frames": [0, 3],
+              "blocks": [{"min": [0.0, 0.0, 0.0], "max": [0.4, 0.1, 0.4]}]},
+    "solids": [{"type": "tank", "min": [0, 0, 0], "max": [0.4, 0.6, 0.4]},
+               {"type": "box", "min": [0.15, 0.3, 0.15], "max": [0.25, 0.4, 0.25], "dynamic": {"density": 2000}}]
+  })");
+  const SimScene with_body = read_sim_scene(ParamReader::from_json(json, "drop.json"), ".", "drop");
+  EXPECT_EQ(with_body.fluid_keys.value("spume_bodies_generation", 0), 2);
+  json["solids"][1].erase("dynamic");
+  const SimScene without = read_sim_scene(ParamReader::from_json(json, "drop.json"), ".", "drop");
+  EXPECT_FALSE(without.fluid_keys.contains("spume_bodies_generation"));
+}
+
 TEST(BodyTrackStage, DynamicSolidsWithAFileFluidAreRefused) {
   const Json json = Json::parse(R"({
     "name": "files", "fluid": {"files": "nothing_%d.bgeo", "radius": 0.02},
