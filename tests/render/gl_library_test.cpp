@@ -8,17 +8,13 @@
 
 #include "render/gl/gl_api.h"
 #include "sim/core/error.h"
+#include "tests/support/error_of.h"
 
 namespace spume::gl {
 namespace {
 
 std::string error_of_loading(std::span<const char* const> libraries) {
-  try {
-    load_functions(libraries);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return testing::error_of([&] { load_functions(libraries); });
 }
 
 TEST(GlLibrary, AMissingLibraryIsNamedWithThePackageToInstall) {

@@ -100,19 +100,23 @@ TEST(BodyTrackFile, MalformedFilesAreRefusedNamingTheLine) {
   expect_read_error(header + "0,0,1,2,3,1,0,0,0,0,0,0,0,0,0\n1,1,1,2,3,1,0,0,0,0,0,0,0,0,0\n", "other bodies");
 }
 
-// A heavy cube dropped into a shallow pool: the stage's track holds the solver's poses at every
-// frame time, and the cube falls.
-TEST(BodyTrackStage, FluidStageWritesTheSolversPosesPerFrame) {
-  const testing::TempDir temp;
-  const fs::path& out = temp.path;
-  const Json json = Json::parse(R"({
+// A heavy cube above a shallow pool, frames 0-3 at 20 fps.
+Json cube_over_a_pool() {
+  return Json::parse(R"({
     "name": "drop",
     "fluid": {"source": "solver", "radius": 0.025, "fps": 20, "frames": [0, 3],
               "blocks": [{"min": [0.0, 0.0, 0.0], "max": [0.4, 0.1, 0.4]}]},
     "solids": [{"type": "tank", "min": [0, 0, 0], "max": [0.4, 0.6, 0.4]},
                {"type": "box", "min": [0.15, 0.3, 0.15], "max": [0.25, 0.4, 0.25], "dynamic": {"density": 2000}}]
   })");
-  const ParamReader root = ParamReader::from_json(json, "drop.json");
+}
+
+// The cube dropped into the pool: the stage's track holds the solver's poses at every frame time,
+// and the cube falls.
+TEST(BodyTrackStage, FluidStageWritesTheSolversPosesPerFrame) {
+  const testing::TempDir temp;
+  const fs::path& out = temp.path;
+  const ParamReader root = ParamReader::from_json(cube_over_a_pool(), "drop.json");
   const SimScene scene = read_sim_scene(root, ".", "drop");
   DiffuseStageOptions options;
   options.out_root = out;
@@ -140,13 +144,7 @@ TEST(BodyTrackStage, FluidStageWritesTheSolversPosesPerFrame) {
 // fluid keys carry a generation of their own: caches made before it are stale, while a scene without
 // bodies keeps its caches.
 TEST(BodyTrackStage, OnlyScenesWithBodiesCarryTheBodiesGeneration) {
-  Json json = Json::parse(R"({
-    "name": "drop",
-    "fluid": {"source": "solver", "radius": 0.025, "fps": 20, "frames": [0, 3],
-              "blocks": [{"min": [0.0, 0.0, 0.0], "max": [0.4, 0.1, 0.4]}]},
-    "solids": [{"type": "tank", "min": [0, 0, 0], "max": [0.4, 0.6, 0.4]},
-               {"type": "box", "min": [0.15, 0.3, 0.15], "max": [0.25, 0.4, 0.25], "dynamic": {"density": 2000}}]
-  })");
+  Json json = cube_over_a_pool();
   const SimScene with_body = read_sim_scene(ParamReader::from_json(json, "drop.json"), ".", "drop");
   EXPECT_EQ(with_body.fluid_keys.value("spume_bodies_generation", 0), 2);
   json["solids"][1].erase("dynamic");
