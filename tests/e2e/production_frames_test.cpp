@@ -43,7 +43,8 @@ class ProductionFrames : public ::testing::Test {
 };
 
 TEST_F(ProductionFrames, OiiotoolListsTheLayersAndRebuildsBeautyFromThemInTheHeadersOrder) {
-  ASSERT_EQ(run_spume("run " + args("--quiet --exr --frames 6-8")).status, 0);
+  const CommandResult made = run_spume("run " + args("--quiet --exr --frames 6-8"));
+  ASSERT_EQ(made.status, 0) << made.output;
   const fs::path exr = frame(8, ".exr");
   const CommandResult info = testing::run_command("iinfo -v " + exr.string() + " 2>&1");
   ASSERT_EQ(info.status, 0) << info.output;
@@ -97,7 +98,8 @@ TEST_F(ProductionFrames, OiiotoolListsTheLayersAndRebuildsBeautyFromThemInTheHea
 }
 
 TEST_F(ProductionFrames, OffRemovesAnEarlierRunsFilesAndLeavesThePngsCurrent) {
-  ASSERT_EQ(run_spume("run " + args("--quiet --exr --frames 7-8")).status, 0);
+  const CommandResult made = run_spume("run " + args("--quiet --exr --frames 7-8"));
+  ASSERT_EQ(made.status, 0) << made.output;
   ASSERT_TRUE(fs::exists(frame(7, ".exr")) && fs::exists(frame(8, ".exr")));
   const auto png_time = fs::last_write_time(frame(8, ".png"));
 
@@ -124,8 +126,10 @@ TEST_F(ProductionFrames, OffRemovesAnEarlierRunsFilesAndLeavesThePngsCurrent) {
 }
 
 TEST_F(ProductionFrames, ThePixelsDoNotDependOnTheThreadCount) {
-  ASSERT_EQ(run_spume("run " + args("--quiet --exr --frames 8 --threads 1", "one")).status, 0);
-  ASSERT_EQ(run_spume("run " + args("--quiet --exr --frames 8 --threads 2", "two")).status, 0);
+  const CommandResult on_one = run_spume("run " + args("--quiet --exr --frames 8 --threads 1", "one"));
+  ASSERT_EQ(on_one.status, 0) << on_one.output;
+  const CommandResult on_two = run_spume("run " + args("--quiet --exr --frames 8 --threads 2", "two"));
+  ASSERT_EQ(on_two.status, 0) << on_two.output;
   const ExrContents one = read_exr(frame(8, ".exr", "one")), two = read_exr(frame(8, ".exr", "two"));
   ASSERT_EQ(one.channels.size(), 33u) << "beauty, Z, 6 layers, 4 motion channels";
   for (const auto& [name, values] : one.channels) EXPECT_EQ(values, two.channels.at(name)) << name;
