@@ -184,19 +184,27 @@ SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& sc
   return scene;
 }
 
+Aabb tank_with_air_above(const Solid& tank) {
+  Aabb box;
+  box.extend(tank.min);
+  Vec3f top = tank.max;
+  if (tank.open_top) top[tank.up_axis] += tank.max[tank.up_axis] - tank.min[tank.up_axis];
+  box.extend(top);
+  return box;
+}
+
 Aabb default_domain(const SimScene& scene, const Aabb& fluid_bounds) {
   Aabb box;
   for (const Solid& s : scene.solids.solids())
     if (s.kind == Solid::Kind::Tank) {
-      // Spray thrown over an open rim falls outside, beside the tank, to the ground at its floor.
-      Vec3f lo = s.min, hi = s.max;
-      if (s.open_top) {
-        const float height = s.max[s.up_axis] - s.min[s.up_axis];
-        lo -= Vec3f::Constant(height), hi += Vec3f::Constant(height);
-        lo[s.up_axis] = s.min[s.up_axis];
-      }
-      box.extend(lo);
-      box.extend(hi);
+      Aabb reach = tank_with_air_above(s);
+      if (s.open_top)  // spray thrown over the rim falls beside the tank, to the ground at its floor
+        for (int a = 0; a < 3; ++a)
+          if (a != s.up_axis) {
+            const float height = s.max[s.up_axis] - s.min[s.up_axis];
+            reach.min[a] -= height, reach.max[a] += height;
+          }
+      box.extend(reach);
     }
   if (!box.empty()) return box;
   box = fluid_bounds;

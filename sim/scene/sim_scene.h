@@ -63,9 +63,14 @@ struct SimScene {
 SimScene read_sim_scene(const ParamReader& root, const std::filesystem::path& scene_dir,
                         const std::string& default_name);
 
-// The domain used when the scene gives none: the tanks if there are any, an open one widened on each
-// side and raised by its height (spray thrown over its rim falls beside it to its floor), else the fluid's bounds over the whole sequence grown by their extent on every side
-// (at least 8 h), so nothing the flow reaches is lost and spray falling away is.
+// A tank and, over an open top, the air above it to the tank's height again: where the water and
+// its spray are (without the ground beside it).
+Aabb tank_with_air_above(const Solid& tank);
+
+// The domain used when the scene gives none: the tanks if there are any, each as tank_with_air_above
+// and an open one widened on each side by its height (spray thrown over its rim falls beside it to
+// its floor), else the fluid's bounds over the whole sequence grown by their extent on every side (at
+// least 8 h), so nothing the flow reaches is lost and spray falling away is.
 Aabb default_domain(const SimScene& scene, const Aabb& fluid_bounds);
 
 }  // namespace spume

@@ -34,18 +34,13 @@ struct Grid {
   }
 };
 
-// Where the study counts the material: the tanks, an open top raised by the tank's height, else the
-// domain. The domain reaches beside an open tank too, for spray on its way to the ground; counting
-// there would only coarsen the cells over the water.
+// Where the study counts the material: the tanks with the air above them, else the domain. The domain
+// reaches beside an open tank too, for spray on its way to the ground; counting there would only
+// coarsen the cells over the water.
 Aabb study_region(const SceneInputs& inputs) {
   Aabb box;
   for (const Solid& s : inputs.solids.solids())
-    if (s.kind == Solid::Kind::Tank) {
-      Vec3f top = s.max;
-      if (s.open_top) top[s.up_axis] += s.max[s.up_axis] - s.min[s.up_axis];
-      box.extend(s.min);
-      box.extend(top);
-    }
+    if (s.kind == Solid::Kind::Tank) box.extend(tank_with_air_above(s));
   return box.empty() ? inputs.domain : box;
 }
 
