@@ -22,6 +22,7 @@ btTransform pose_transform(const Vec3f& centre, const Quatf& q) {
 // the copy grown by the skin, or, for a body that starts within the skin of one (a tower standing on
 // the floor), the solid as it is, which it rests on as placed.
 constexpr int kBodyGroup = 64, kSkinnedGroup = 128, kPlainGroup = 256;
+constexpr int kMaskOfABody = -1;  // World::add: decided by World::body_mask once the solids are in
 
 // Whether any contact the test finds goes deeper than touching.
 struct OverlapCount : btCollisionWorld::ContactResultCallback {
@@ -69,8 +70,6 @@ struct RigidBodies::World {
     return shapes.back().get();
   }
 
-  // `mask` < 0: a body, which meets the grown solids unless it starts within their skin (then the
-  // solids as they are: pushed out of the skin, a body placed on the floor would leap off it).
   btRigidBody* add(btCollisionShape* shape, const btTransform& where, double mass, float friction, int group, int mask) {
     btVector3 inertia(0, 0, 0);
     if (mass > 0.0) shape->calculateLocalInertia(mass, inertia);
@@ -82,16 +81,20 @@ struct RigidBodies::World {
     info.m_angularDamping = 0.0;
     objects.push_back(std::make_unique<btRigidBody>(info));
     btRigidBody* o = objects.back().get();
-    if (mask < 0) {
-      OverlapCount test;
-      test.m_collisionFilterGroup = kBodyGroup;
-      test.m_collisionFilterMask = kSkinnedGroup;
-      world.contactTest(o, test);
-      mask = kBodyGroup | (test.overlaps ? kPlainGroup : kSkinnedGroup);
-    }
+    if (mask < 0) mask = body_mask(o);
     filters.emplace_back(group, mask);
     world.addRigidBody(o, group, mask);
     return o;
+  }
+
+  // Whom a body meets: the other bodies and the grown solids, or the solids as they are when it starts
+  // within their skin (pushed out of the skin, a body placed on the floor would leap off it).
+  int body_mask(btRigidBody* body) {
+    OverlapCount test;
+    test.m_collisionFilterGroup = kBodyGroup;
+    test.m_collisionFilterMask = kSkinnedGroup;
+    world.contactTest(body, test);
+    return kBodyGroup | (test.overlaps ? kPlainGroup : kSkinnedGroup);
   }
 
   // A static or kinematic solid, twice: grown by `skin`, and as it is (once without a skin).
@@ -155,7 +158,8 @@ RigidBodies::RigidBodies(const SolidSet& solids, const Vec3f& gravity, float mar
     const btTransform where = pose_transform(s.centre(), s.orientation);
     if (s.dynamics.enabled) {
       const double mass = s.dynamics.mass > 0.0f ? double(s.dynamics.mass) : double(s.dynamics.density) * s.volume();
-      btRigidBody* body = w.add(w.shape_of(s, margin, 0.0f), where, mass, s.dynamics.friction, kBodyGroup, -1);
+      btRigidBody* body =
+          w.add(w.shape_of(s, margin, 0.0f), where, mass, s.dynamics.friction, kBodyGroup, kMaskOfABody);
       body->setActivationState(DISABLE_DEACTIVATION);  // the fluid may push a body at rest at any time
       body_of_solid_[i] = int(w.bodies.size());
       w.bodies.push_back(body);
