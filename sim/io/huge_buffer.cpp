@@ -16,14 +16,19 @@ namespace spume {
 namespace {
 
 constexpr size_t kHuge = size_t(2) << 20;
+// Requests under a 2 MiB page take 64 KiB units of ordinary pages: in 2 MiB pages each of a small
+// frame's cache columns held a whole page, 12 MiB of a dam break simulate that makes no particles.
+constexpr size_t kSmallUnit = size_t(64) << 10;
 
-// 2 MiB units rounded up to 8..15 x a power of two (at most 1/8 more than asked).
+// Units (2 MiB, or 64 KiB under 2 MiB) rounded up to 8..15 x a power of two (at most 1/8 more than
+// asked).
 size_t block_size(size_t bytes) {
-  size_t units = std::max<size_t>(1, (bytes + kHuge - 1) / kHuge);
+  const size_t unit = bytes >= kHuge ? kHuge : kSmallUnit;
+  size_t units = std::max<size_t>(1, (bytes + unit - 1) / unit);
   int shift = 0;
   while ((units >> shift) >= 16) ++shift;
   units = ((units + (size_t(1) << shift) - 1) >> shift) << shift;
-  return units * kHuge;
+  return units * unit;
 }
 
 struct Kept {
@@ -43,9 +48,13 @@ Pool& pool() {
   return *p;
 }
 
-// A fresh block of `bytes` (a multiple of 2 MiB) at a 2 MiB boundary, advised 2 MiB pages; null when
-// the address space is short.
+// A fresh block of `bytes` (block_size's): a multiple of 2 MiB at a 2 MiB boundary, advised 2 MiB
+// pages, or a smaller one in ordinary pages; null when the address space is short.
 void* map_block(size_t bytes) {
+  if (bytes % kHuge != 0) {
+    void* small = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    return small == MAP_FAILED ? nullptr : small;
+  }
   void* region = mmap(nullptr, bytes + kHuge, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
   if (region == MAP_FAILED) return nullptr;
   char* start = static_cast<char*>(region);
@@ -67,7 +76,7 @@ void* grow_block(void* block, size_t old_bytes, size_t new_bytes) {
     munmap(target, new_bytes);
     return nullptr;
   }
-  madvise(moved, new_bytes, MADV_HUGEPAGE);
+  if (new_bytes % kHuge == 0) madvise(moved, new_bytes, MADV_HUGEPAGE);
   return moved;
 }
 

@@ -27,9 +27,9 @@ enum class BlockWrites { Whole, InPart };
 
 // The pool behind HugeBuffer: freed blocks are kept (up to scratch_pool_cap() of blocks in all, the oldest
 // released first beyond that) and a request takes the smallest kept block that fits, when that block
-// is at most twice the request, of its own kind if one fits. Block sizes are rounded up to 2 MiB times
-// 8..15 x a power of two, so that a frame slightly larger than the last still fits the last frame's
-// blocks; when none fits, the largest kept block of at least half the request (of its own kind first)
+// is at most twice the request, of its own kind if one fits. Block sizes are rounded up to 2 MiB
+// (64 KiB in ordinary pages under 2 MiB) times 8..15 x a power of two, so that a frame slightly larger
+// than the last still fits the last frame's blocks; when none fits, the largest kept block of at least half the request (of its own kind first)
 // is grown in place of a fresh one (its pages move over, and only the growth is fresh). Thread-safe.
 // A third of the machine's memory, at least 2 GiB (address space: only the touched pages are resident).
 // A 100M-particle frame's cache encoder takes about 7 GiB of blocks; handed back to the system beyond

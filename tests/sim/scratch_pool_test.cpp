@@ -2,8 +2,12 @@
 // a block written in part goes back to an owner that writes in part before one that writes whole
 // (and the other way round), and a request no kept block fits grows the largest kept block of at
 // least half its size, keeping its pages (so only the growth is fresh memory), instead of taking a
-// fresh one.
+// fresh one. A request under 2 MiB is served in ordinary pages, so a small frame's columns do not
+// each hold a whole 2 MiB page.
 #include <gtest/gtest.h>
+
+#include <sys/mman.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdint>
@@ -53,6 +57,32 @@ TEST_F(ScratchPool, AFreedBlockIsTakenAgainByARequestItFits) {
   EXPECT_EQ(b.bytes, a.bytes);
   EXPECT_EQ(static_cast<const unsigned char*>(b.block)[b.bytes - 1], 0x5A);
   scratch_give_back(b.block, b.bytes);
+}
+
+// Pages of [p, p + bytes) resident now (mincore).
+size_t resident_pages(void* p, size_t bytes) {
+  const size_t page = size_t(sysconf(_SC_PAGESIZE));
+  std::vector<unsigned char> in((bytes + page - 1) / page);
+  if (mincore(p, bytes, in.data()) != 0) return 0;
+  return size_t(std::count_if(in.begin(), in.end(), [](unsigned char c) { return c & 1; }));
+}
+
+TEST_F(ScratchPool, ARequestUnderTwoMiBTakesOrdinaryPages) {
+  // 100 KiB: two units of 64 KiB; 1.5 MiB: 24 units, a multiple of 2 (12 x 2^1) kept as asked.
+  const Taken a = take(100 << 10), b = take(1536 << 10);
+  EXPECT_EQ(a.bytes, size_t(128) << 10);
+  EXPECT_EQ(b.bytes, size_t(1536) << 10);
+  // One byte written maps one page, not the 2 MiB page around it.
+  static_cast<unsigned char*>(a.block)[0] = 1;
+  static_cast<unsigned char*>(b.block)[0] = 1;
+  const size_t page = size_t(sysconf(_SC_PAGESIZE));
+  EXPECT_EQ(resident_pages(a.block, a.bytes), 1u);
+  EXPECT_EQ(resident_pages(b.block, b.bytes), 1u) << "of " << b.bytes / page;
+  // 2 MiB and more are still whole 2 MiB units at a 2 MiB boundary.
+  const Taken c = take(2 * kMiB + 1);
+  EXPECT_EQ(c.bytes, 4 * kMiB);
+  EXPECT_EQ(reinterpret_cast<uintptr_t>(c.block) % (2 * kMiB), 0u);
+  for (const Taken& t : {a, b, c}) scratch_give_back(t.block, t.bytes);
 }
 
 TEST_F(ScratchPool, ARequestNoKeptBlockFitsGrowsTheLargestOfAtLeastHalfItsSize) {
