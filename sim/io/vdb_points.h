@@ -1,8 +1,9 @@
 #pragma once
 // OpenVDB point caches (.vdb): Blender Mantaflow's fluid_data_####.vdb, Houdini's VDB points, any
 // file with point data grids. Positions go through each grid's transform (world space); velocity, id
-// (int32 or int64) and mass (float) under the names of io/attribute_names.h, any codec. The OpenVDB
-// headers stay in vdb_points.cpp: this header is what the rest of spume sees.
+// (int32 or int64) and mass (float) under the names of io/attribute_names.h, any codec. OpenVDB is
+// opened only by runs that read or write .vdb files (io/vdb_module.h): this header is what the rest
+// of spume sees.
 #include <filesystem>
 #include <optional>
 #include <string>

@@ -1,51 +1,16 @@
 #include "sim/io/vdb_points_writer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include <openvdb/openvdb.h>
-#include <openvdb/points/PointConversion.h>
-#include <openvdb/points/PointDataGrid.h>
-#include <openvdb/points/PointGroup.h>
+#include <openvdb/version.h>  // the version macros only: OpenVDB itself is in the module (vdb_module.h)
 
 #include "sim/core/atomic_file.h"
 #include "sim/core/error.h"
-#include "sim/io/vdb_file_bytes.h"
+#include "sim/io/vdb_module.h"
 
 namespace spume {
-namespace {
-
-namespace vp = openvdb::points;
-using PositionCodec = vp::FixedPointCodec</*OneByte=*/false, vp::PositionRange>;  // 16 bits per axis
-constexpr double kPositionSteps = 65535.0;  // steps across one voxel
-constexpr float kHalfMax = 65504.0f;
-
-// Positions for OpenVDB's partitioner and codec, in double, moved up by half a fixed-point step: the
-// codec truncates to the step below, so the shift makes it round to the nearest step instead.
-class ShiftedPositions {
- public:
-  using value_type = openvdb::Vec3d;
-  using PosType = openvdb::Vec3d;
-  ShiftedPositions(const std::vector<Vec3f>& positions, double shift) : positions_(positions), shift_(shift) {}
-  size_t size() const { return positions_.size(); }
-  void getPos(size_t n, openvdb::Vec3d& xyz) const {
-    const Vec3f& p = positions_[n];
-    xyz = openvdb::Vec3d(double(p.x()) + shift_, double(p.y()) + shift_, double(p.z()) + shift_);
-  }
-
- private:
-  const std::vector<Vec3f>& positions_;
-  double shift_;
-};
-
-template <typename T>
-void add_attribute(vp::PointDataTree& tree, const openvdb::tools::PointIndexTree& index, const char* name,
-                   const std::vector<T>& values) {
-  vp::populateAttribute<vp::PointDataTree, openvdb::tools::PointIndexTree, vp::PointAttributeVector<T>>(
-      tree, index, name, vp::PointAttributeVector<T>(values));
-}
-
-}  // namespace
 
 std::string vdb_points_format(float voxel_size) {
   // Bump the layout number when the attributes, codecs or metadata written here change.
@@ -55,7 +20,7 @@ std::string vdb_points_format(float voxel_size) {
 float vdb_points_voxel_size(float particle_radius) { return 2.0f * particle_radius; }
 
 double vdb_position_error(float voxel_size, float coordinate) {
-  const double step = double(voxel_size) / kPositionSteps;
+  const double step = double(voxel_size) / kVdbPositionSteps;
   const double ulp = std::nextafter(std::fabs(coordinate), std::numeric_limits<float>::infinity()) - std::fabs(coordinate);
   // Half a step, with 4% for the codec's own float arithmetic (it scales a float offset by 65535),
   // and half an ulp for a reader that holds the world position as a float.
@@ -67,60 +32,7 @@ double vdb_velocity_error(float component) {
 }
 
 std::string vdb_points_bytes(const DiffuseFrame& frame, float voxel_size, std::span<const float> ages) {
-  if (!ages.empty() && ages.size() != frame.size()) fail("OpenVDB points: ", ages.size(), " ages for ", frame.size(), " particles");
-  if (!(voxel_size > 0.0f) || !std::isfinite(voxel_size)) fail("OpenVDB points: voxel size ", voxel_size, " is not positive");
-  initialize_openvdb();
-  const size_t n = frame.size();
-  const openvdb::math::Transform::Ptr transform = openvdb::math::Transform::createLinearTransform(voxel_size);
-  const ShiftedPositions positions(frame.positions, 0.5 * double(voxel_size) / kPositionSteps);
-  const openvdb::tools::PointIndexGrid::Ptr index =
-      openvdb::tools::createPointIndexGrid<openvdb::tools::PointIndexGrid>(positions, *transform);
-  const vp::PointDataGrid::Ptr grid =
-      vp::createPointDataGrid<PositionCodec, vp::PointDataGrid>(*index, positions, *transform);
-  grid->setName("points");
-  vp::PointDataTree& tree = grid->tree();
-
-  std::vector<openvdb::Vec3f> velocities(n);
-  std::vector<int64_t> ids(n);
-  std::vector<int32_t> types(n);
-  for (size_t i = 0; i < n; ++i) {
-    const Vec3f& v = frame.velocities[i];
-    if (!(std::fabs(v.x()) <= kHalfMax && std::fabs(v.y()) <= kHalfMax && std::fabs(v.z()) <= kHalfMax))
-      fail("OpenVDB points: diffuse particle ", frame.ids[i], " moves at (", v.x(), ", ", v.y(), ", ", v.z(),
-           ") m/s, beyond the 65504 m/s a half-float velocity holds");
-    velocities[i] = openvdb::Vec3f(v.x(), v.y(), v.z());
-    ids[i] = int64_t(frame.ids[i]);  // the id's 64 bits: negative from parent ids of 2^31 up (frames.h)
-    types[i] = int32_t(frame.types[i]);
-  }
-  if (n > 0) {
-    vp::appendAttribute(tree, "v", vp::TypedAttributeArray<openvdb::Vec3f, vp::TruncateCodec>::attributeType());
-    add_attribute(tree, index->tree(), "v", velocities);
-    vp::appendAttribute<float>(tree, "lifetime");
-    add_attribute(tree, index->tree(), "lifetime", frame.lifetimes);
-    if (!ages.empty()) {  // Houdini's names: age since birth, life the whole span (alive while age < life)
-      std::vector<float> age(ages.begin(), ages.end()), life(n);
-      for (size_t i = 0; i < n; ++i) life[i] = age[i] + frame.lifetimes[i];
-      vp::appendAttribute<float>(tree, "age");
-      add_attribute(tree, index->tree(), "age", age);
-      vp::appendAttribute<float>(tree, "life");
-      add_attribute(tree, index->tree(), "life", life);
-    }
-    vp::appendAttribute<int64_t>(tree, "id");
-    add_attribute(tree, index->tree(), "id", ids);
-    vp::appendAttribute<int32_t>(tree, "type");
-    add_attribute(tree, index->tree(), "type", types);
-    for (int t = 0; t < kDiffuseTypeCount; ++t) {
-      const char* group = to_string(DiffuseType(t));
-      std::vector<short> member(n);
-      for (size_t i = 0; i < n; ++i) member[i] = types[i] == t ? 1 : 0;
-      vp::appendGroup(tree, group);
-      vp::setGroup(tree, index->tree(), member, group);
-    }
-  }
-  grid->insertMeta("frame", openvdb::Int32Metadata(frame.index));
-  grid->insertMeta("time", openvdb::DoubleMetadata(frame.time));
-
-  return vdb_file_bytes({grid});
+  return vdb_module().points_bytes(frame, voxel_size, ages);
 }
 
 void write_vdb_points(const std::filesystem::path& path, const DiffuseFrame& frame, float voxel_size,

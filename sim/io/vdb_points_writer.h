@@ -10,7 +10,7 @@
 //   type      int32: 0 spray, 1 foam, 2 bubble; and point groups "spray", "foam", "bubble"
 // The file's bytes depend only on the frame and the voxel size: OpenVDB stamps every file with a random
 // UUID, which is replaced by one derived from the rest of the file (same content, same UUID).
-// OpenVDB's headers stay in the .cpp: they are heavy.
+// OpenVDB itself is opened only by runs that write or read .vdb files (io/vdb_module.h).
 #include <filesystem>
 #include <span>
 #include <string>
@@ -18,6 +18,9 @@
 #include "sim/core/frames.h"
 
 namespace spume {
+
+// Fixed-point steps across one voxel in a position (16 bits per axis).
+inline constexpr double kVdbPositionSteps = 65535.0;
 
 // The voxel spume writes diffuse points with: the fluid's particle spacing 2 r.
 float vdb_points_voxel_size(float particle_radius);

@@ -2,16 +2,16 @@
 // What every .vdb file spume writes shares: OpenVDB initialised once, Blosc compression, "creator:
 // spume", and bytes that depend only on the grids. OpenVDB stamps each file with a random UUID; spume
 // puts one derived from the rest of the file (same content, same UUID). Includes OpenVDB's heavy
-// headers: only the writers include this.
+// headers: only the module's writers include this.
 #include <string>
 
 #include <openvdb/openvdb.h>
 
-namespace spume {
+namespace spume::openvdb_io {
 
 void initialize_openvdb();
 
 // The whole file for `grids`, as bytes.
 std::string vdb_file_bytes(const openvdb::GridCPtrVec& grids);
 
-}  // namespace spume
+}  // namespace spume::openvdb_io

@@ -1,4 +1,4 @@
-#include "sim/io/vdb_file_bytes.h"
+#include "sim/io/vdb/file_bytes.h"
 
 #include <cstdint>
 #include <cstdio>
@@ -9,7 +9,7 @@
 
 #include "sim/core/error.h"
 
-namespace spume {
+namespace spume::openvdb_io {
 namespace {
 
 bool is_hex(char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f') || (c >= 'A' && c <= 'F'); }
@@ -61,4 +61,4 @@ std::string vdb_file_bytes(const openvdb::GridCPtrVec& grids) {
   return bytes;
 }
 
-}  // namespace spume
+}  // namespace spume::openvdb_io
