@@ -44,6 +44,42 @@ std::string header_of(const FluidRestartState& s) {
   return h;
 }
 
+constexpr size_t kBodyBytes = 56;
+
+std::string body_section(const std::vector<BodyPose>& bodies) {
+  using io::Endian;
+  std::string b;
+  io::store(b, uint32_t(bodies.size()), Endian::Little);
+  for (const BodyPose& p : bodies) {
+    io::store(b, p.solid, Endian::Little);
+    const Quatf& q = p.orientation;
+    for (float f : {p.position.x(), p.position.y(), p.position.z(), q.w(), q.x(), q.y(), q.z(), p.velocity.x(),
+                    p.velocity.y(), p.velocity.z(), p.angular_velocity.x(), p.angular_velocity.y(),
+                    p.angular_velocity.z()})
+      io::store(b, f, Endian::Little);
+  }
+  return b;
+}
+
+std::vector<BodyPose> read_bodies(io::ByteReader& r, const std::string& where) {
+  const uint32_t m = r.read<uint32_t>("body count");
+  if (m != r.remaining() / kBodyBytes || m * kBodyBytes != r.remaining())
+    fail(where, ": ", m, " bodies do not fit the ", r.remaining(), " bytes after the particles (truncated or corrupt)");
+  std::vector<BodyPose> bodies(m);
+  for (BodyPose& p : bodies) {
+    p.solid = r.read<uint32_t>("body solid");
+    float f[13];
+    for (float& x : f) x = r.read<float>("body pose");
+    for (float x : f)
+      if (!std::isfinite(x)) fail(where, ": body of solid ", p.solid, " has a non-finite pose or velocity");
+    p.position = Vec3f(f[0], f[1], f[2]);
+    p.orientation = Quatf(f[3], f[4], f[5], f[6]);
+    p.velocity = Vec3f(f[7], f[8], f[9]);
+    p.angular_velocity = Vec3f(f[10], f[11], f[12]);
+  }
+  return bodies;
+}
+
 template <typename T>
 void read_array(io::ByteReader& r, std::vector<T>& out, size_t n, const char* what) {
   r.require_array(n, sizeof(T), what);
@@ -59,7 +95,8 @@ void write_restart_state(const std::filesystem::path& path, const FluidRestartSt
       (!s.density_warm.empty() && (s.density_warm.size() != n || s.divergence_warm.size() != n)))
     fail(path.string(), ": restart state arrays of unequal length");
   const std::string header = header_of(s);
-  write_crc_file(path, header, s.ids, s.positions, s.velocities, s.density_warm, s.divergence_warm);
+  write_crc_file(path, header, s.ids, s.positions, s.velocities, s.density_warm, s.divergence_warm,
+                 body_section(s.bodies));
 }
 
 FluidRestartState read_restart_state(const std::filesystem::path& path) {
@@ -75,7 +112,8 @@ FluidRestartState read_restart_state(const std::filesystem::path& path) {
   r.skip(8, "magic");
   FluidRestartState s;
   const uint32_t version = r.read<uint32_t>("version");
-  if (version != kRestartVersion) fail(where, ": restart file version ", version, "; this build reads ", kRestartVersion);
+  if (version != kRestartVersion && version != 2)
+    fail(where, ": restart file version ", version, "; this build reads 2 and ", kRestartVersion);
   s.frame = r.read<int32_t>("frame");
   s.time = r.read<double>("time");
   s.dt_prev = r.read<double>("dt_prev");
@@ -93,7 +131,9 @@ FluidRestartState read_restart_state(const std::filesystem::path& path) {
                     &c.max_dt_used, &c.step_cap})
     *d = r.read<double>("statistics");
   const uint64_t per_particle = 4 + 12 + 12 + (flags & kHasWarmStart ? 8 : 0);
-  if (n > r.remaining() / per_particle || n * per_particle != r.remaining())
+  const uint64_t bodies_at_least = version >= 3 ? 4 : 0;  // the body count
+  const uint64_t for_particles = r.remaining() >= bodies_at_least ? r.remaining() - bodies_at_least : 0;
+  if (n > for_particles / per_particle || (version < 3 && n * per_particle != r.remaining()))
     fail(where, ": ", n, " particles do not fit the file size ", bytes.size(), " bytes (truncated or corrupt)");
   read_array(r, s.ids, n, "ids");
   read_array(r, s.positions, n, "positions");
@@ -102,6 +142,7 @@ FluidRestartState read_restart_state(const std::filesystem::path& path) {
     read_array(r, s.density_warm, n, "density warm start");
     read_array(r, s.divergence_warm, n, "divergence warm start");
   }
+  if (version >= 3) s.bodies = read_bodies(r, where);
   if (!std::isfinite(s.time) || !std::isfinite(s.dt_prev) || !(s.dt_prev > 0.0) ||
       !std::isfinite(s.particle_radius) || !std::isfinite(c.step_cap) || !(c.step_cap > 0.0))
     fail(where, ": time ", s.time, ", dt_prev ", s.dt_prev, ", step cap ", c.step_cap, " and radius ",

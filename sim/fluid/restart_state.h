@@ -9,12 +9,14 @@
 // CFL estimate use; and the counters behind solver_stats.csv, with the step cap retries lowered.
 // Not carried, because the next step rebuilds them from the above: neighbour grid and pairs,
 // densities, DFSPH factors, accelerations, boundary particles (kinematic solids are placed by their
-// motion at the restored time). Dynamic bodies are not restorable: Bullet's contact caches, warm-started impulses and broadphase pair
-// order shape its next steps and are not exposed, so a solver with dynamic bodies refuses.
+// motion at the restored time). Dynamic bodies carry their poses: Bullet starts every stretch the
+// solver advances (a frame) afresh from them, contact caches and warm-started impulses cleared, so
+// the poses are all of its state a later step depends on.
 //
 // File (.spr), little-endian, no padding, header 184 bytes:
 //   offset   0  char[8]  magic "SPUMERS1"
-//   offset   8  u32      version (2; 1 had no retries and step cap)
+//   offset   8  u32      version (3; 2 had no bodies, and is read as a scene without them; 1 had no
+//                        retries and step cap)
 //   offset  12  i32      frame index the state belongs to
 //   offset  16  f64      time (s)
 //   offset  24  f64      the last step, dt_prev (s)
@@ -28,6 +30,8 @@
 //                        smallest dt, largest dt, the step cap (s; retries lower it for good)
 //   then ids u32[n], positions f32[3n], velocities f32[3n],
 //        (bit 0) density warm start f32[n], divergence warm start f32[n], all in solver order,
+//   then u32 body count m and per body (56 bytes): u32 solid index, f32[3] centre, f32[4] orientation
+//        (w, x, y, z), f32[3] velocity, f32[3] angular velocity (BodyPose),
 //   then u32 CRC-32 (zlib crc32) of every byte before it.
 #include <cstdint>
 #include <filesystem>
@@ -36,6 +40,7 @@
 
 #include "sim/core/vec.h"
 #include "sim/fluid/solver_counters.h"
+#include "sim/geometry/solids.h"
 
 namespace spume {
 
@@ -50,11 +55,12 @@ struct FluidRestartState {
   std::vector<uint32_t> ids;
   std::vector<Vec3f> positions, velocities;
   std::vector<float> density_warm, divergence_warm;
+  std::vector<BodyPose> bodies;  // the dynamic bodies, in body order
 
   size_t size() const { return ids.size(); }
 };
 
-constexpr uint32_t kRestartVersion = 2;
+constexpr uint32_t kRestartVersion = 3;
 
 void write_restart_state(const std::filesystem::path& path, const FluidRestartState& state);
 // Verifies magic, version, flags, size, CRC and that every value is finite; Error names the file.

@@ -210,8 +210,8 @@ void RigidBodies::reset(const std::vector<BodyPose>& poses, double t) {
   w.solver.reset();
   for (size_t b = 0; b < w.bodies.size(); ++b) {
     btRigidBody& body = *w.bodies[b];
-    body.setWorldTransform(pose_transform(poses[b].position, poses[b].orientation));
-    body.setInterpolationWorldTransform(body.getWorldTransform());
+    // Also the world inertia tensor, which Bullet otherwise keeps from the body's last step.
+    body.setCenterOfMassTransform(pose_transform(poses[b].position, poses[b].orientation));
     body.setLinearVelocity(bt(poses[b].velocity));
     body.setAngularVelocity(bt(poses[b].angular_velocity));
     body.setInterpolationLinearVelocity(body.getLinearVelocity());

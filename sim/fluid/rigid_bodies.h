@@ -43,9 +43,10 @@ class RigidBodies {
   // of at most kMaxSubstep. Kinematic solids move to their offset at each substep's end.
   void step(double t, double dt, const std::vector<Vec3d>& force, const std::vector<Vec3d>& torque);
 
-  // Puts every body back at `poses` (as poses() gave them) at time t, with Bullet's contact caches
-  // emptied: what a fluid solver retrying a stretch from its last good state needs. The steps after
-  // it are deterministic, though not those of a run that never left that state.
+  // Puts every body at `poses` (as poses() gave them) at time t, with Bullet's contact caches and
+  // warm-started impulses emptied and its broadphase rebuilt in the order the bodies were made: what
+  // follows depends on the poses alone, so the same poses give the same steps in any RigidBodies of
+  // the same solids (a fresh one restoring a saved state, or one that has run for a while).
   void reset(const std::vector<BodyPose>& poses, double t);
 
   static constexpr double kMaxSubstep = 1.0 / 1000.0;  // s

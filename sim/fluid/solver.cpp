@@ -115,7 +115,11 @@ void FluidSolver::update_neighbourhoods() {
 
 void FluidSolver::advance_to(double t, const std::function<void()>& after_step) {
   if (!(time_ < t)) return;
-  const Checkpoint start = checkpoint();
+  // Bullet starts every stretch afresh from the bodies' poses (contacts and warm-started impulses
+  // cleared): its state is then all in the poses, which a restart state carries, so a run continued
+  // from one steps as one uninterrupted run does; a retry starts from the same state.
+  if (!bodies_.empty()) bodies_.reset(bodies_.poses(), time_);
+  const FluidRestartState start = restart_state(0);
   for (int attempt = 0;; ++attempt) {
     try {
       while (time_ < t) {
@@ -127,7 +131,7 @@ void FluidSolver::advance_to(double t, const std::function<void()>& after_step) 
       const double cap = counters_.step_cap;
       if (attempt == kMaxRetries || cap <= params_.min_dt)
         throw fluid::BlowUp(e.what(), attempt ? str(" (taken again ", attempt, attempt == 1 ? " time" : " times",
-                                                     " from t = ", start.state.time, " s with steps down to ", cap,
+                                                     " from t = ", start.time, " s with steps down to ", cap,
                                                      " s)")
                                               : std::string());
       roll_back(start);
@@ -138,15 +142,13 @@ void FluidSolver::advance_to(double t, const std::function<void()>& after_step) 
   }
 }
 
-FluidSolver::Checkpoint FluidSolver::checkpoint() const { return {restart_state(0), bodies_.poses()}; }
-
-void FluidSolver::roll_back(const Checkpoint& c) {
+void FluidSolver::roll_back(const FluidRestartState& start) {
   const double cap = counters_.step_cap;
   const uint64_t retries = counters_.retries;
-  adopt(c.state);
+  adopt(start);
   counters_.step_cap = cap, counters_.retries = retries;  // what the retries learnt stays
   if (!bodies_.empty()) {
-    bodies_.reset(c.poses, time_);
+    bodies_.reset(start.bodies, time_);
     sync_body_centres();
   }
   fluid::place_boundary(boundary_, placements_at(time_), false);
@@ -294,13 +296,18 @@ FluidRestartState FluidSolver::restart_state(int frame) const {
     s.density_warm = p.density_warm;
     s.divergence_warm = p.divergence_warm;
   }
+  s.bodies = bodies_.poses();
   return s;
 }
 
 void FluidSolver::restore(const FluidRestartState& s) {
   const size_t n = particles_.size();
-  if (!bodies_.empty())
-    fail("fluid solver: cannot continue a saved state with dynamic solids (Bullet's contact state is not saved)");
+  if (s.bodies.size() != bodies_.size())
+    fail("fluid solver: the saved state has ", s.bodies.size(), " dynamic bodies; the scene has ", bodies_.size());
+  for (size_t k = 0; k < s.bodies.size(); ++k)
+    if (s.bodies[k].solid != bodies_.poses()[k].solid)
+      fail("fluid solver: the saved state's body ", k, " is solid ", s.bodies[k].solid, "; the scene's is solid ",
+           bodies_.poses()[k].solid);
   if (s.size() != n || s.positions.size() != n || s.velocities.size() != n)
     fail("fluid solver: the saved state has ", s.size(), " particles; the scene makes ", n);
   if (s.particle_radius != params_.particle_radius)
@@ -316,6 +323,10 @@ void FluidSolver::restore(const FluidRestartState& s) {
     seen[id] = 1;
   }
   adopt(s);
+  if (!bodies_.empty()) {
+    bodies_.reset(s.bodies, time_);
+    sync_body_centres();
+  }
   // The particles come in the order the grid sorted them into, and sorting them again keeps it (the
   // sort breaks ties by index), so the grid, pairs and their summation order are the saved run's.
   fluid::place_boundary(boundary_, placements_at(time_), false);

@@ -64,7 +64,8 @@ class FluidSolver {
   // (blow_up.h), the whole stretch is taken again from the state advance_to started from with the
   // step cap halved, which stays lowered for the rest of the run (stats().retries, .step_cap), up to
   // kMaxRetries times and never below min_dt; then the last BlowUp is rethrown with what was tried.
-  // Every decision rests on thread-independent values, so the bytes are too.
+  // Every decision rests on thread-independent values, so the bytes are too. Dynamic bodies start
+  // the stretch afresh from their poses (Bullet's contacts cleared), as a restored solver does.
   void advance_to(double t, const std::function<void()>& after_step = {});
   static constexpr int kMaxRetries = 4;
   // What the blow-up behind the last retry found (BlowUp::finding), "" when none has happened.
@@ -77,7 +78,7 @@ class FluidSolver {
   FluidRestartState restart_state(int frame) const;
   // Continues from a saved state of a solver built with the same parameters, blocks and solids: every
   // later step gives the same bytes as the solver that saved it. Throws Error when the state does
-  // not fit (particle count, ids, radius, warm start) or the scene has dynamic bodies.
+  // not fit (particle count, ids, radius, warm start, the dynamic bodies).
   void restore(const FluidRestartState& state);
 
   // The current state in id order (ids 0..n-1), labelled with `index` and the current time.
@@ -117,13 +118,8 @@ class FluidSolver {
   std::vector<fluid::SolidPlacement> step_placements(double t0, double t1) const;
   double body_speed() const;  // fastest point of any dynamic body, m/s
   void sync_body_centres();
-  // What advance_to goes back to when a stretch blows up.
-  struct Checkpoint {
-    FluidRestartState state;
-    std::vector<BodyPose> poses;
-  };
-  Checkpoint checkpoint() const;
-  void roll_back(const Checkpoint& c);
+  // What advance_to goes back to when a stretch blows up (the restart state, bodies included).
+  void roll_back(const FluidRestartState& start);
   // Takes the particles, time, last step and counters of a state (restore and roll_back check and
   // place the rest).
   void adopt(const FluidRestartState& s);

@@ -19,8 +19,9 @@ constexpr int kFluidCacheGeneration = 2;
 // a wall stay on their fluid particle's side.
 constexpr int kDiffuseCacheGeneration = 3;
 // Solver scenes with dynamic bodies only, so that the others keep their fluid caches.
-// 2: the bodies keep a skin of 2r from the solids (fluid/rigid_bodies.h).
-constexpr int kBodiesGeneration = 2;
+// 2: the bodies keep a skin of 2r from the solids (fluid/rigid_bodies.h). 3: Bullet starts every
+// frame afresh from the bodies' poses, so that a run continues from its restart state.
+constexpr int kBodiesGeneration = 3;
 
 Json with_generation(Json keys, int generation) {
   keys["spume_cache_generation"] = generation;

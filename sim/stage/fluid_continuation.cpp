@@ -1,5 +1,6 @@
 #include "sim/stage/fluid_continuation.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 
@@ -8,6 +9,7 @@
 #include "sim/io/frame_pattern.h"
 #include "sim/io/spume_cache.h"
 #include "sim/io/stage_record.h"
+#include "sim/stage/body_track_file.h"
 #include "sim/stage/fluid_stage.h"
 
 namespace spume {
@@ -40,17 +42,30 @@ bool agrees_with_frame(const FluidRestartState& s, const FluidFrame& frame) {
   return true;
 }
 
+// Frames 0..state.frame of the body track at `path`, whose last must hold the state's poses exactly.
+BodyTrack body_track_prefix(const FluidRestartState& s, const std::filesystem::path& path, double fps) {
+  BodyTrack track = read_body_track(path, fps);
+  const size_t frames = size_t(s.frame) + 1;
+  if (track.first_frame != 0 || track.frames.size() < frames)
+    fail(path.string(), " holds frames ", track.first_frame, "-", track.first_frame + int(track.frames.size()) - 1,
+         "; frames 0-", s.frame, " wanted");
+  track.frames.resize(frames);
+  const std::vector<BodyPose>& last = track.frames.back();
+  auto same = [](const BodyPose& a, const BodyPose& b) {
+    return a.solid == b.solid && a.position == b.position && a.orientation.coeffs() == b.orientation.coeffs() &&
+           a.velocity == b.velocity && a.angular_velocity == b.angular_velocity;
+  };
+  if (last.size() != s.bodies.size() || !std::equal(last.begin(), last.end(), s.bodies.begin(), same))
+    fail(path.string(), ": the poses of frame ", s.frame, " are not the restart state's");
+  return track;
+}
+
 }  // namespace
 
 std::string fluid_restart_digest(const SimScene& scene) { return record_digest(scene.fluid_keys); }
 
 std::optional<FluidContinuation> find_fluid_continuation(const SimScene& scene,
                                                          const std::filesystem::path& scene_out, std::string& why) {
-  if (scene.solids.any_dynamic()) {
-    why = "the scene has dynamic solids, and Bullet's contact caches and warm-started impulses cannot be saved "
-          "and restored exactly";
-    return std::nullopt;
-  }
   const std::optional<StageRecord> record = read_stage_record(scene_out / "fluid");
   if (!record) {
     why = "the fluid folder has no record";
@@ -72,6 +87,7 @@ std::optional<FluidContinuation> find_fluid_continuation(const SimScene& scene,
            c.state.digest, "; wanted frame ", c.last_frame, " with keys ", fluid_restart_digest(scene));
     if (!agrees_with_frame(c.state, read_fluid_cache(fluid_cache_path(scene_out, c.last_frame))))
       fail(path.string(), " does not hold the particles of ", fluid_cache_path(scene_out, c.last_frame).string());
+    if (scene.solids.any_dynamic()) c.bodies = body_track_prefix(c.state, body_track_path(scene_out), scene.fluid.fps);
   } catch (const Error& e) {
     why = e.what();
     return std::nullopt;

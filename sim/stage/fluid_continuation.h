@@ -5,9 +5,9 @@
 // cached frame (fluid/restart_state.h), which the stage saves as
 //   OUT/<scene>/fluid/restart_0010.spr    the solver state after the last frame of the run (here 10)
 // Only the last frame's state is kept: it is all a later run needs, and a state per frame would
-// double the folder's size. A scene with dynamic solids is always solved from t = 0 (Bullet's state
-// is not restorable), and so is a folder whose restart file is missing, corrupt or does not agree
-// with its last frame.
+// double the folder's size. A scene with dynamic solids continues its body track (bodies.csv) too,
+// from the poses the state carries. A folder whose restart file is missing, corrupt or does not agree
+// with its last frame (and body track) is solved again from t = 0.
 #include <filesystem>
 
 #include "sim/io/cache_layout.h"  // fluid_restart_path
@@ -15,6 +15,7 @@
 #include <string>
 
 #include "sim/fluid/restart_state.h"
+#include "sim/geometry/body_track.h"
 #include "sim/scene/sim_scene.h"
 
 namespace spume {
@@ -27,6 +28,7 @@ struct FluidContinuation {
   int last_frame = -1;         // the last frame on disk: solving continues with the next one
   FluidRestartState state;     // the solver's state at that frame
   std::string stats;           // solver_stats.csv up to that frame (header and one row per frame)
+  BodyTrack bodies;            // bodies.csv up to that frame (scenes with dynamic solids)
 };
 
 // The continuation of the current prefix in OUT/<scene>/fluid (the caller has matched its record

@@ -140,7 +140,7 @@ FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions
   SolverStats before = solver.stats();
   double fastest = 0.0;  // of the frames made here, for the closing line
   int fastest_frame = first;
-  BodyTrack bodies;
+  BodyTrack bodies = resume ? resume->bodies : BodyTrack{};
   bodies.fps = scene.fluid.fps;
   for (int f = first; f <= last; ++f) {
     const Stopwatch t0;
@@ -172,11 +172,9 @@ FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions
     before = now;
   }
   if (has_bodies) write_body_track(body_track_path(out), bodies);
-  else {
-    FluidRestartState state = solver.restart_state(last);
-    state.digest = fluid_restart_digest(scene);
-    write_restart_state(fluid_restart_path(out, last), state);
-  }
+  FluidRestartState state = solver.restart_state(last);
+  state.digest = fluid_restart_digest(scene);
+  write_restart_state(fluid_restart_path(out, last), state);
   write_file_atomically(dir / "solver_stats.csv", [&](std::ostream& o) { o << stats; });
   StageRecord made = fluid_stage_record(scene, last);
   made.warnings = messages::warnings();

@@ -1,7 +1,8 @@
 // The solver's restart state (fluid/restart_state.h): a solver restored from a saved state steps to
 // the same bytes as the solver that saved it, for any thread count, with a moving solid and with
-// warm start; the file round-trips every field exactly and refuses corrupt copies; states that do
-// not fit the solver, and solvers with dynamic bodies, are refused.
+// warm start, and with dynamic bodies (floating, resting on the floor, falling in); the file
+// round-trips every field exactly and refuses corrupt copies; states that do not fit the solver are
+// refused.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -12,6 +13,7 @@
 #include "sim/core/error.h"
 #include "sim/core/parallel.h"
 #include "sim/fluid/solver.h"
+#include "sim/io/crc32.h"
 #include "tests/support/temp_dir.h"
 
 namespace spume {
@@ -89,6 +91,14 @@ void expect_continuation_identical(const Scene& setup, double t1, double t2, int
     const FluidFrame a = straight.frame(k), b = resumed.frame(k);
     EXPECT_TRUE(same_bytes(a.positions, b.positions)) << "t = " << t;
     EXPECT_TRUE(same_bytes(a.velocities, b.velocities)) << "t = " << t;
+    ASSERT_EQ(straight.body_poses().size(), resumed.body_poses().size());
+    for (size_t i = 0; i < straight.body_poses().size(); ++i) {
+      const BodyPose &p = straight.body_poses()[i], &q = resumed.body_poses()[i];
+      EXPECT_EQ(p.position, q.position) << "body " << i << ", t = " << t;
+      EXPECT_EQ(p.orientation.coeffs(), q.orientation.coeffs()) << "body " << i << ", t = " << t;
+      EXPECT_EQ(p.velocity, q.velocity) << "body " << i << ", t = " << t;
+      EXPECT_EQ(p.angular_velocity, q.angular_velocity) << "body " << i << ", t = " << t;
+    }
     const SolverStats sa = straight.stats(), sb = resumed.stats();
     EXPECT_EQ(sa.steps, sb.steps);
     EXPECT_EQ(sa.average_dt, sb.average_dt);
@@ -117,6 +127,37 @@ TEST(FluidRestart, WarmStartPressuresAreCarried) {
   expect_continuation_identical(column(false, true), 0.1, 0.16, 2);
 }
 
+// The column with three bodies: a light flat box in the front's path (its inertia depends on its
+// orientation), a dense one resting on the floor (it starts within the floor's skin), and a ball
+// falling in from above.
+Scene column_with_bodies() {
+  Scene s = column(false, false);
+  Solid light, dense, ball;
+  light.kind = dense.kind = Solid::Kind::Box;
+  light.min = Vec3f(0.2f, 0.0f, 0.04f), light.max = Vec3f(0.28f, 0.03f, 0.1f);
+  light.dynamics.enabled = true, light.dynamics.density = 500.0f;
+  dense.min = Vec3f(0.32f, 0.0f, 0.05f), dense.max = Vec3f(0.37f, 0.05f, 0.1f);
+  dense.dynamics.enabled = true, dense.dynamics.density = 3000.0f;
+  ball.kind = Solid::Kind::Sphere;
+  ball.center = Vec3f(0.1f, 0.34f, 0.08f);
+  ball.radius = 0.03f;
+  ball.dynamics.enabled = true, ball.dynamics.density = 800.0f;
+  s.solids = SolidSet({tank(), light, dense, ball});
+  return s;
+}
+
+TEST(FluidRestart, RestoredSolverWithDynamicBodiesContinuesByteIdentically) {
+  const Scene scene = column_with_bodies();
+  expect_continuation_identical(scene, 0.1, 0.2, 2);
+  // The bodies did move after the save: the ball fell into the water and the front reached the box.
+  FluidSolver solver = scene.make();
+  solver.advance_to(0.1);
+  const std::vector<BodyPose> at_save = solver.body_poses();
+  solver.advance_to(0.2);
+  for (size_t b : {size_t(0), size_t(2)})
+    EXPECT_GT((solver.body_poses()[b].position - at_save[b].position).norm(), 0.002) << "body " << b;
+}
+
 TEST(FluidRestart, FileRoundTripsEveryField) {
   FluidRestartState s;
   s.frame = 42;
@@ -134,11 +175,17 @@ TEST(FluidRestart, FileRoundTripsEveryField) {
   s.velocities = {Vec3f(4, 5, 6), Vec3f(-1, -2, -3), Vec3f(0, 0, 0)};
   s.density_warm = {0.5f, 0.25f, 0.125f};
   s.divergence_warm = {1, 2, 3};
+  BodyPose a, b;
+  a.solid = 3, a.position = Vec3f(0.5f, -0.0f, 1e-30f), a.orientation = Quatf(0.5f, -0.5f, 0.5f, 0.5f);
+  a.velocity = Vec3f(1, 2, 3), a.angular_velocity = Vec3f(-4, 5, -6);
+  b.solid = 7, b.position = Vec3f(1.0f / 3.0f, 2, 3);
+  s.bodies = {a, b};
   const testing::TempDir temp;
   const fs::path file = temp / "roundtrip.spr";
   write_restart_state(file, s);
-  // Header 184 bytes, 3 x (4 + 12 + 12 + 4 + 4) bytes of particles, 4 bytes of CRC.
-  EXPECT_EQ(fs::file_size(file), 184u + 3u * 36u + 4u);
+  // Header 184 bytes, 3 x (4 + 12 + 12 + 4 + 4) bytes of particles, a body count and 2 x 56 bytes of
+  // bodies, 4 bytes of CRC.
+  EXPECT_EQ(fs::file_size(file), 184u + 3u * 36u + 4u + 2u * 56u + 4u);
   const FluidRestartState r = read_restart_state(file);
   EXPECT_EQ(r.frame, 42);
   EXPECT_EQ(r.time, s.time);
@@ -165,12 +212,41 @@ TEST(FluidRestart, FileRoundTripsEveryField) {
   EXPECT_TRUE(same_bytes(r.velocities, s.velocities));
   EXPECT_EQ(r.density_warm, s.density_warm);
   EXPECT_EQ(r.divergence_warm, s.divergence_warm);
+  ASSERT_EQ(r.bodies.size(), 2u);
+  for (size_t i = 0; i < 2; ++i) {
+    const BodyPose &p = s.bodies[i], &q = r.bodies[i];
+    EXPECT_EQ(q.solid, p.solid);
+    EXPECT_TRUE(std::memcmp(q.position.data(), p.position.data(), 12) == 0) << i;  // -0 and denormals too
+    EXPECT_EQ(q.orientation.coeffs(), p.orientation.coeffs()) << i;
+    EXPECT_EQ(q.velocity, p.velocity) << i;
+    EXPECT_EQ(q.angular_velocity, p.angular_velocity) << i;
+  }
 
-  // Without warm start the arrays are left out (flags bit 0 clear).
-  s.density_warm.clear(), s.divergence_warm.clear();
+  // Without warm start the arrays are left out (flags bit 0 clear); without bodies, the count is 0.
+  s.density_warm.clear(), s.divergence_warm.clear(), s.bodies.clear();
   write_restart_state(file, s);
-  EXPECT_EQ(fs::file_size(file), 184u + 3u * 28u + 4u);
+  EXPECT_EQ(fs::file_size(file), 184u + 3u * 28u + 4u + 4u);
   EXPECT_TRUE(read_restart_state(file).density_warm.empty());
+  EXPECT_TRUE(read_restart_state(file).bodies.empty());
+
+  // A version 2 file (an older spume's: no body section) reads as a state without bodies.
+  std::string bytes;
+  {
+    std::ifstream in(file, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  std::string v2 = bytes.substr(0, bytes.size() - 8);  // without the body count and the CRC
+  v2[8] = 2;
+  const uint32_t crc = crc32_update(crc32_start(), v2.data(), v2.size());
+  v2.append(reinterpret_cast<const char*>(&crc), 4);
+  {
+    std::ofstream out(file, std::ios::binary | std::ios::trunc);
+    out << v2;
+  }
+  const FluidRestartState old = read_restart_state(file);
+  EXPECT_TRUE(old.bodies.empty());
+  EXPECT_EQ(old.ids, s.ids);
+  EXPECT_TRUE(same_bytes(old.velocities, s.velocities));
 }
 
 std::string error_reading(const fs::path& file) {
@@ -239,17 +315,12 @@ TEST(FluidRestart, StatesThatDoNotFitAreRefusedAndLeaveTheSolverUntouched) {
   EXPECT_EQ(target.time(), 0.0);
   EXPECT_TRUE(same_bytes(target.frame(0).positions, before.positions));
 
-  // A dynamic body's Bullet state is not in the file: refused.
-  Scene with_body = column(false, false);
-  Solid ball;
-  ball.kind = Solid::Kind::Sphere;
-  ball.center = Vec3f(0.3f, 0.3f, 0.08f);
-  ball.radius = 0.04f;
-  ball.dynamics.enabled = true;
-  ball.dynamics.density = 500.0f;
-  with_body.solids = SolidSet({tank(), ball});
-  FluidSolver bodies = with_body.make();
-  EXPECT_NE(error_restoring(bodies, bodies.restart_state(0)).find("dynamic solids"), std::string::npos);
+  // A state of a scene without bodies does not fit one with bodies, nor bodies of other solids.
+  FluidSolver bodies = column_with_bodies().make();
+  EXPECT_NE(error_restoring(bodies, good).find("the saved state has 0 dynamic bodies; the scene has 3"), std::string::npos);
+  bad = bodies.restart_state(0);
+  bad.bodies[1].solid = 1;
+  EXPECT_NE(error_restoring(bodies, bad).find("body 1 is solid 1; the scene's is solid 2"), std::string::npos);
 }
 
 }  // namespace
