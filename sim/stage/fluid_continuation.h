@@ -4,6 +4,7 @@
 // one uninterrupted run because the solver restarts from the exact state it had after the last
 // cached frame (fluid/restart_state.h), which the stage saves as
 //   OUT/<scene>/fluid/restart_0010.spr    the solver state after the last frame of the run (here 10)
+// at the run's end and, with a record of the frames so far, during it (a killed run continues).
 // Only the last frame's state is kept: it is all a later run needs, and a state per frame would
 // double the folder's size. A scene with dynamic solids continues its body track (bodies.csv) too,
 // from the poses the state carries. A folder whose restart file is missing, corrupt or does not agree

@@ -67,6 +67,26 @@ std::vector<std::filesystem::path> body_files(const SimScene& scene, const std::
   return {};
 }
 
+// Everything a later run continues from, for frames 0..last: the restart state, the body track,
+// solver_stats.csv and the record. Written at the end of a run and, as checkpoints, during it.
+void write_continuable_prefix(const SimScene& scene, const std::filesystem::path& out, const FluidSolver& solver,
+                              int last, const BodyTrack& bodies, const std::string& stats) {
+  if (scene.solids.any_dynamic()) write_body_track(body_track_path(out), bodies);
+  FluidRestartState state = solver.restart_state(last);
+  state.digest = fluid_restart_digest(scene);
+  write_restart_state(fluid_restart_path(out, last), state);
+  write_file_atomically(out / "fluid" / "solver_stats.csv", [&](std::ostream& o) { o << stats; });
+  StageRecord made = fluid_stage_record(scene, last);
+  made.warnings = messages::warnings();
+  write_stage_record(out / "fluid", made);
+  remove_fluid_restarts(out, last);
+}
+
+// A run saves where it is whenever the time since it last did is kCheckpointRatio times what that
+// took (the first frame always): killed midway, the next run continues from the last save, and the
+// saves cost at most 1/kCheckpointRatio of the run (the paper's tower: 100 MB every half minute).
+constexpr double kCheckpointRatio = 50.0;
+
 void remove_fluid_frames(const std::filesystem::path& out) {
   std::error_code ec;
   for (int f : find_pattern_frames(fluid_cache_pattern(out))) std::filesystem::remove(fluid_cache_path(out, f), ec);
@@ -142,6 +162,8 @@ FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions
   int fastest_frame = first;
   BodyTrack bodies = resume ? resume->bodies : BodyTrack{};
   bodies.fps = scene.fluid.fps;
+  Stopwatch since_checkpoint;
+  double checkpoint_seconds = 0.0;  // what the last one took
   for (int f = first; f <= last; ++f) {
     const Stopwatch t0;
     const double t = double(f) / scene.fluid.fps;
@@ -170,16 +192,14 @@ FluidStageSummary run_fluid_stage(const SimScene& scene, const FluidStageOptions
     progress.update(done + 1, str("frame ", f, ": ", now.steps - before.steps, " steps, density error ",
                                   100.0 * now.density_error, "%"));
     before = now;
+    if (f < last && since_checkpoint.seconds() >= kCheckpointRatio * checkpoint_seconds) {
+      const Stopwatch writing;
+      write_continuable_prefix(scene, out, solver, f, bodies, stats);
+      checkpoint_seconds = writing.seconds();
+      since_checkpoint.restart();
+    }
   }
-  if (has_bodies) write_body_track(body_track_path(out), bodies);
-  FluidRestartState state = solver.restart_state(last);
-  state.digest = fluid_restart_digest(scene);
-  write_restart_state(fluid_restart_path(out, last), state);
-  write_file_atomically(dir / "solver_stats.csv", [&](std::ostream& o) { o << stats; });
-  StageRecord made = fluid_stage_record(scene, last);
-  made.warnings = messages::warnings();
-  write_stage_record(dir, made);
-  remove_fluid_restarts(out, last);
+  write_continuable_prefix(scene, out, solver, last, bodies, stats);
   summary.seconds = start.seconds();
   const SolverStats s = solver.stats();
   // The fastest particle is said, not judged: no threshold on it separates the runs that are right
