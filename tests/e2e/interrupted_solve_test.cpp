@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "sim/io/stage_record.h"
+#include "tests/support/files.h"
 #include "tests/support/run_spume.h"
 #include "tests/support/temp_dir.h"
 #include "tests/support/text.h"
@@ -22,12 +23,8 @@ namespace {
 namespace fs = std::filesystem;
 using testing::CommandResult;
 using testing::contains;
+using testing::read_file;
 using testing::run_spume;
-
-std::string file_bytes(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
 
 TEST(InterruptedSolve, AKilledRunContinuesFromItsLastSaveAndEndsAsOneRun) {
   testing::TempDir dir;
@@ -81,10 +78,10 @@ TEST(InterruptedSolve, AKilledRunContinuesFromItsLastSaveAndEndsAsOneRun) {
   for (int f = 0; f <= 100; ++f) {
     std::snprintf(name, sizeof name, "fluid_%04d.spf", f);
     ASSERT_TRUE(fs::exists(fluid / name)) << name;
-    EXPECT_TRUE(file_bytes(fluid / name) == file_bytes(dir / "b/killed/fluid" / name)) << name << " differs";
+    EXPECT_TRUE(read_file(fluid / name) == read_file(dir / "b/killed/fluid" / name)) << name << " differs";
   }
-  EXPECT_TRUE(file_bytes(fluid / "bodies.csv") == file_bytes(dir / "b/killed/fluid/bodies.csv"));
-  EXPECT_TRUE(file_bytes(fluid / "restart_0100.spr") == file_bytes(dir / "b/killed/fluid/restart_0100.spr"));
+  EXPECT_TRUE(read_file(fluid / "bodies.csv") == read_file(dir / "b/killed/fluid/bodies.csv"));
+  EXPECT_TRUE(read_file(fluid / "restart_0100.spr") == read_file(dir / "b/killed/fluid/restart_0100.spr"));
 }
 
 }  // namespace
