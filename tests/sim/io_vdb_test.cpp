@@ -17,6 +17,7 @@
 #include <map>
 
 #include "sim/core/error.h"
+#include "sim/core/sanitizers.h"
 #include "sim/io/attribute_names.h"
 #include "sim/io/fluid_import.h"
 #include "sim/io/fluid_source.h"
@@ -268,6 +269,11 @@ TEST(VdbPoints, BadFilesAreRefusedNamingTheFile) {
   write_vdb(dir / "whole.vdb", {make_points(s)});
   const std::string bytes = io::read_file_bytes(dir / "whole.vdb");
   for (size_t cut : {size_t(9), size_t(40), bytes.size() / 4, bytes.size() / 2, bytes.size() - 200, bytes.size() - 1}) {
+    // A cut inside a Blosc page can make OpenVDB ask for terabytes (a length read from what the
+    // allocator left past the cut): the release build's operator new throws, AddressSanitizer's
+    // aborts even with allocator_may_return_null. The command reads such files in a child
+    // (tests/e2e/hostile_inputs_test.cpp); here, under ASan, only the cuts in the header are read.
+    if (kAddressSanitizer && cut > 40) continue;
     std::ofstream(dir / "cut.vdb", std::ios::binary).write(bytes.data(), std::streamsize(cut));
     size_t read = 0;
     e = error_of([&] { read = read_fluid_file(dir / "cut.vdb").size(); });
