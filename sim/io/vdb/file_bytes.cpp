@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include <openvdb/io/Stream.h>
+#include <openvdb/points/AttributeArray.h>
 
 #include "sim/core/error.h"
 
@@ -46,7 +47,12 @@ void replace_uuid_with_digest(std::string& bytes) {
 
 void initialize_openvdb() {
   static std::once_flag once;
-  std::call_once(once, [] { openvdb::initialize(); });
+  std::call_once(once, [] {
+    openvdb::initialize();
+    // Mantaflow stores its int32 flag `U` with the truncate codec, which OpenVDB does not register.
+    using Int32Truncate = openvdb::points::TypedAttributeArray<int32_t, openvdb::points::TruncateCodec>;
+    if (!Int32Truncate::isRegistered()) Int32Truncate::registerType();
+  });
 }
 
 std::string vdb_file_bytes(const openvdb::GridCPtrVec& grids) {

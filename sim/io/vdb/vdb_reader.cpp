@@ -4,7 +4,6 @@
 #include <array>
 #include <cstring>
 #include <fstream>
-#include <mutex>
 #include <optional>
 
 #include <openvdb/io/File.h>
@@ -17,22 +16,13 @@
 #include "sim/core/out_of_memory.h"
 #include "sim/io/attribute_names.h"
 #include "sim/io/contained_read.h"
+#include "sim/io/vdb/file_bytes.h"
 
 namespace spume::openvdb_io {
 namespace {
 
 namespace vdb = openvdb;
 namespace vpts = openvdb::points;
-
-void initialize_openvdb() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    vdb::initialize();
-    // Mantaflow stores its int32 flag `U` with the truncate codec, which OpenVDB does not register.
-    using Int32Truncate = vpts::TypedAttributeArray<int32_t, vpts::TruncateCodec>;
-    if (!Int32Truncate::isRegistered()) Int32Truncate::registerType();
-  });
-}
 
 // The value type and codec of attribute `index`, e.g. ("vec3s", "trnc").
 std::pair<std::string, std::string> attribute_type(const vpts::AttributeSet::Descriptor& d, size_t index) {
