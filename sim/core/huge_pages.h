@@ -48,10 +48,27 @@ void reserve_in_huge_pages(std::vector<T>& v, size_t n) {
   v.swap(grown);
 }
 
-// v.resize(n), growing as std::vector does (at least doubling) into a block advised as above.
+// The capacity a growing array takes: an eighth more than it had, not the doubling std::vector does.
+// The diffuse stage's arrays grow with its particle count a little at a time, frame after frame;
+// doubled, they held up to twice the particles there were (tests/bench/RESULTS.md §17.2).
+inline size_t grown_capacity(size_t capacity, size_t n) { return std::max(n, capacity + capacity / 8); }
+
+// v.resize(n), growing geometrically (grown_capacity) into a block advised as above; contents kept.
 template <typename T>
 void resize_in_huge_pages(std::vector<T>& v, size_t n) {
-  if (n > v.capacity()) reserve_in_huge_pages(v, std::max(n, 2 * v.size()));
+  if (n > v.capacity()) reserve_in_huge_pages(v, grown_capacity(v.capacity(), n));
+  v.resize(n);
+}
+
+// v.resize(n) for an array its owner writes whole after: when it must grow, the old block is freed
+// before the new one is taken, so the two are never held at once.
+template <typename T>
+void resize_discarding_in_huge_pages(std::vector<T>& v, size_t n) {
+  if (n > v.capacity()) {
+    const size_t capacity = grown_capacity(v.capacity(), n);
+    std::vector<T>().swap(v);
+    reserve_in_huge_pages(v, capacity);
+  }
   v.resize(n);
 }
 

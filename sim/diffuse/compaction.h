@@ -24,7 +24,7 @@ struct CompactionBuffers {
 template <typename T>
 void gather_into(std::vector<T>& column, std::vector<T>& into, std::span<const uint32_t> order, size_t capacity) {
   if (into.capacity() < capacity) {
-    into.clear();  // nothing in it is kept: no copy into the larger block
+    std::vector<T>().swap(into);  // nothing in it is kept: freed before the larger block is taken
     reserve_in_huge_pages(into, capacity);
   }
   into.resize(order.size());

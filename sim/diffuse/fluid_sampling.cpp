@@ -19,16 +19,16 @@ constexpr uint32_t kFilterFrom = 6;
 void sample_fluid(const NeighbourGrid& grid, std::span<const Vec3f> sorted_motion, std::span<const Vec3f> positions,
                   FluidSamples& out) {
   const size_t n = positions.size();
-  resize_in_huge_pages(out.neighbour_count, n);
-  resize_in_huge_pages(out.fluid_velocity, n);
-  resize_in_huge_pages(out.kernel_sum, n);
+  resize_discarding_in_huge_pages(out.neighbour_count, n);
+  resize_discarding_in_huge_pages(out.fluid_velocity, n);
+  resize_discarding_in_huge_pages(out.kernel_sum, n);
 
   // Sort by half-cell (by cell on a grid too large for half-cell keys); particles away from all fluid
   // share the key one past the last and sort last.
   const bool halves = grid.key_count() <= NeighbourGrid::kMaxOctantKeys;
   const uint32_t outside = halves ? grid.key_count() * 8 : grid.key_count();
   std::vector<uint32_t>& keys = out.sorter.input_keys();
-  resize_in_huge_pages(keys, n);
+  resize_discarding_in_huge_pages(keys, n);
   parallel_for(n, 1 << 14, [&](size_t b, size_t e) {
     if (halves) grid.octant_keys(positions.subspan(b, e - b), std::span(keys).subspan(b, e - b));
     for (size_t i = b; i < e; ++i) {

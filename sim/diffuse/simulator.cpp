@@ -91,7 +91,7 @@ void DiffuseSimulator::classify(const FluidStepState& state, uint32_t step, bool
     StageTimer timer(pending_, Stage::Grid);
     grid_.build(state.positions, setup_.fluid.support_radius);
     const auto order = grid_.sorted_to_original();
-    resize_in_huge_pages(sorted_motion_, order.size());
+    resize_discarding_in_huge_pages(sorted_motion_, order.size());
     parallel_for(order.size(), 4096, [&](size_t b, size_t e) {
       for (size_t j = b; j < e; ++j) sorted_motion_[j] = sample_velocity ? state.motion[order[j]] : Vec3f::Zero();
     });
@@ -141,7 +141,7 @@ void DiffuseSimulator::step(const FluidStepState& state, uint32_t step, float dt
   const SolidClearance& clearance = clearance_of(solids, step_clearance_);
 
   // Advect the existing particles (MODEL.md §4), keep them out of solids, dissolve foam (§5).
-  resize_in_huge_pages(alive_, old_count);
+  resize_discarding_in_huge_pages(alive_, old_count);
   std::atomic<uint64_t> dissolved{0}, removed{0}, landed{0};
   {
     StageTimer timer(pending_, Stage::Advect);
@@ -217,7 +217,7 @@ void DiffuseSimulator::step(const FluidStepState& state, uint32_t step, float dt
   // Compact: survivors in cell order (spatially coherent for the next step), then the newborns.
   StageTimer timer(pending_, Stage::Advect);
   const size_t born = particles_.size() - old_count;
-  resize_in_huge_pages(order_, particles_.size());
+  resize_discarding_in_huge_pages(order_, particles_.size());
   const std::vector<uint32_t>& cell_order = samples_.cell_order;
   const size_t survivors = parallel_select(
       old_count, [&](size_t s) { return alive_[cell_order[s]] == 1; },
