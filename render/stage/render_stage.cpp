@@ -287,12 +287,15 @@ RenderStageSummary run_render_stage(PreparedRender& prepared, const nlohmann::js
     if (std::binary_search(frames.begin(), frames.end(), f)) continue;
     const std::filesystem::path path = expand_frame_pattern(pattern, f);
     if (!std::filesystem::exists(path)) continue;
+    // A frame whose cache was removed (for disk room) cannot be checked: it counts as not current.
+    if (settings.draws_diffuse() && !std::filesystem::exists(diffuse_cache_path(scene.scene_out, f))) {
+      ++summary.stale_elsewhere;
+      continue;
+    }
     const std::string record = frame_record(prepared, render_keys, f);
     const std::filesystem::path exr = expand_frame_pattern(exr_pattern, f);
-    const bool current =
-        (!settings.draws_diffuse() || std::filesystem::exists(diffuse_cache_path(scene.scene_out, f))) &&
-        read_png_record(path) == record &&
-        (!settings.exr || !std::filesystem::exists(exr) || read_frame_exr_record(exr) == record);
+    const bool current = read_png_record(path) == record &&
+                         (!settings.exr || !std::filesystem::exists(exr) || read_frame_exr_record(exr) == record);
     summary.stale_elsewhere += !current;
   }
   const auto per_frame = [&](double seconds) {

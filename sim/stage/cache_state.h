@@ -15,10 +15,13 @@
 namespace spume {
 
 // The folder's record against `wanted`; a missing record reads as Stale ("unfinished or never
-// made"), and a Current record with a frame file missing as Stale naming the file (only the files
-// up to wanted.last_frame are asked for: `frame_path` gives each frame's file).
+// made"), and a Current record with a frame file missing as Stale naming the file (`frame_path` gives
+// each frame's file). The files asked for are those of `needed_frames`, or, when it is empty, every
+// frame from wanted.first_frame up to the last both records share: a render needs only the frames it
+// draws, so caches removed to save disk do not stop it from drawing the others.
 RecordMatch cache_match(const std::filesystem::path& dir, const StageRecord& wanted,
                         const std::function<std::filesystem::path(int)>& frame_path,
-                        const std::vector<std::filesystem::path>& other_files = {});
+                        const std::vector<std::filesystem::path>& other_files = {},
+                        const std::vector<int>& needed_frames = {});
 
 }  // namespace spume

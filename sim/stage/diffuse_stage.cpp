@@ -88,9 +88,9 @@ StageRecord diffuse_stage_record(const SimScene& scene, const SceneInputs& input
 }
 
 RecordMatch diffuse_caches_match(const SimScene& scene, const SceneInputs& inputs, const std::vector<int>& frames,
-                                 const std::filesystem::path& scene_out) {
+                                 const std::filesystem::path& scene_out, const std::vector<int>& needed_frames) {
   return cache_match(scene_out / "diffuse", diffuse_stage_record(scene, inputs, frames, scene_out),
-                     [&](int f) { return diffuse_cache_path(scene_out, f); });
+                     [&](int f) { return diffuse_cache_path(scene_out, f); }, {}, needed_frames);
 }
 
 bool diffuse_caches_current(const SimScene& scene, const SceneInputs& inputs, const FluidSource& source,

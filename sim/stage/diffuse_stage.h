@@ -44,8 +44,9 @@ std::vector<int> diffuse_frames_to_run(const SimScene& scene, const FluidSource&
 // inputs resolved to, each fluid frame's file, and the body track of dynamic solids.
 StageRecord diffuse_stage_record(const SimScene& scene, const SceneInputs& inputs, const std::vector<int>& frames,
                                  const std::filesystem::path& scene_out);
+// `needed_frames`: the frames whose caches must be on disk (cache_match); empty: all of `frames`.
 RecordMatch diffuse_caches_match(const SimScene& scene, const SceneInputs& inputs, const std::vector<int>& frames,
-                                 const std::filesystem::path& scene_out);
+                                 const std::filesystem::path& scene_out, const std::vector<int>& needed_frames = {});
 // The caches run_diffuse_stage would make are on disk and current.
 bool diffuse_caches_current(const SimScene& scene, const SceneInputs& inputs, const FluidSource& source,
                             const DiffuseStageOptions& options);

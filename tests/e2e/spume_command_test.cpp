@@ -233,6 +233,26 @@ TEST_F(SpumeCommand, RunSimulatesRendersAndThenReusesEverything) {
   EXPECT_NE(r.output.find("1 frames written, 0 current on disk"), std::string::npos) << r.output;
 }
 
+// Caches removed for disk room (the first frames of a long shot) do not stop a render of the frames whose
+// caches remain; a frame drawn without its cache is refused naming the file.
+TEST_F(SpumeCommand, RenderNeedsOnlyTheCachesOfTheFramesItDraws) {
+  write_scene(std::string(kTinySolverScene) + "}}");
+  Result r = run_spume("run --quiet " + scene() + " --out " + out());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const fs::path first_cache = dir / "out/tiny/diffuse/diffuse_0000.spd";
+  ASSERT_TRUE(fs::remove(first_cache));
+  const fs::path frames = dir / "out/tiny/frames";
+  testing::mark_files(frames);
+  r = run_spume("render " + scene() + " --out " + out() + " --frames 1-2 --overwrite");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(testing::written_since_mark(frames), (std::vector<std::string>{"0001.png", "0002.png"}));
+  // Frame 0's picture can no longer be checked against its cache: it is said to be stale.
+  EXPECT_NE(r.output.find("render: 1 other frames on disk are stale"), std::string::npos) << r.output;
+  r = run_spume("render --quiet " + scene() + " --out " + out() + " --frames 0-2 --overwrite");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find(first_cache.string() + " is missing"), std::string::npos) << r.output;
+}
+
 TEST_F(SpumeCommand, RunLeavesOutWhatTheSceneDoesNotShow) {
   // No surface, no solids drawn, no diffuse type drawn: no reconstruction, no GL, no diffuse stage.
   write_scene(std::string(kTinySolverScene) +

@@ -60,7 +60,8 @@ void check_diffuse_caches(const SimScene& scene, const SceneRender& render, cons
   if (frames.front() < made->first_frame || range.empty())
     fail(dir.string(), ": the diffuse caches start at frame ", made->first_frame, ", after frame ", frames.front(),
          "; run `spume simulate` for the frames to render");
-  const RecordMatch match = diffuse_caches_match(scene, render.inputs, range, render.scene.scene_out);
+  // Only the caches of the frames drawn must be on disk: earlier ones may have been removed for room.
+  const RecordMatch match = diffuse_caches_match(scene, render.inputs, range, render.scene.scene_out, frames);
   if (match.kind == RecordMatch::Kind::Prefix)
     fail(dir.string(), ": the diffuse caches end at frame ", made->last_frame, ", before frame ", frames.back(),
          "; run `spume simulate` (or `spume run`) for the frames to render");
