@@ -50,7 +50,7 @@ void reserve_in_huge_pages(std::vector<T>& v, size_t n) {
 
 // The capacity a growing array takes: an eighth more than it had, not the doubling std::vector does.
 // The diffuse stage's arrays grow with its particle count a little at a time, frame after frame;
-// doubled, they held up to twice the particles there were (tests/bench/RESULTS.md §17.2).
+// doubled, they reserved up to twice what a frame used (tests/bench/RESULTS.md §17.2).
 inline size_t grown_capacity(size_t capacity, size_t n) { return std::max(n, capacity + capacity / 8); }
 
 // v.resize(n), growing geometrically (grown_capacity) into a block advised as above; contents kept.
