@@ -7,6 +7,13 @@
 
 namespace spume {
 
+size_t RadixSorter::bytes() const {
+  size_t total = 0;
+  for (const std::vector<uint32_t>* v : {&order_, &keys_, &order_scratch_, &key_scratch_, &offsets_})
+    total += v->capacity() * sizeof(uint32_t);
+  return total;
+}
+
 void RadixSorter::sort_input_keys(int key_bits) { sort(keys_, key_bits); }
 
 void RadixSorter::sort(std::span<const uint32_t> keys, int key_bits) {

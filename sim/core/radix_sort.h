@@ -20,6 +20,7 @@ class RadixSorter {
   const std::vector<uint32_t>& order() const { return order_; }        // input index of each sorted slot
   const std::vector<uint32_t>& sorted_keys() const { return keys_; }   // keys in sorted order
   std::vector<uint32_t>& order() { return order_; }
+  size_t bytes() const;  // what its buffers hold
 
  private:
   std::vector<uint32_t> order_, keys_, order_scratch_, key_scratch_, offsets_;

@@ -264,6 +264,7 @@ FrameStats DiffuseSimulator::simulate_frame(const FluidFrame& a, const FluidFram
   pending_.by_type = particles_.count_by_type();
   pending_.unpaired_because = pair.unpaired_because;
   pending_.unusable_masses = unusable_masses(a.masses);
+  if (!b) release_step_scratch();  // classified: nothing steps after a last frame
   ready(particles_, pending_);
   const FrameStats done = pending_;
   pending_ = FrameStats{};
@@ -283,6 +284,21 @@ FrameStats DiffuseSimulator::simulate_frame(const FluidFrame& a, const FluidFram
   }
   particles_.time = b->time;
   return done;
+}
+
+void DiffuseSimulator::release_step_scratch() {
+  samples_ = FluidSamples{};
+  std::vector<uint8_t>().swap(alive_);
+  std::vector<uint32_t>().swap(order_);
+  std::vector<uint64_t>().swap(compaction_ids_);
+  std::vector<DiffuseType>().swap(compaction_types_);
+}
+
+size_t DiffuseSimulator::step_scratch_bytes() const {
+  auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
+  return bytes(samples_.neighbour_count) + bytes(samples_.fluid_velocity) + bytes(samples_.kernel_sum) +
+         bytes(samples_.cell_order) + bytes(samples_.group_start) + samples_.sorter.bytes() + bytes(alive_) +
+         bytes(order_) + bytes(compaction_ids_) + bytes(compaction_types_);
 }
 
 }  // namespace spume

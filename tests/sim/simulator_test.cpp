@@ -82,6 +82,38 @@ TEST(DiffuseSimulator, OutputIsByteIdenticalForOneAndTwoThreads) {
   }
 }
 
+// A last frame (no next) frees the step's working arrays before its particles are handed out, so the
+// caches' encoders can take that memory; a later frame grows them again, and the particles are those
+// of a run that never stopped.
+TEST(DiffuseSimulator, ALastFrameFreesTheStepsArraysAndALaterFrameCarriesOn) {
+  const auto fluid = colliding_blocks(8);
+  const RunResult whole = run(setup_for(1.0f, 2), fluid);
+  ASSERT_GT(whole.frames.back().size(), 1000u);
+
+  DiffuseSimulator sim(setup_for(1.0f, 2));
+  auto ignore = [](const DiffuseFrame&, const FrameStats&) {};
+  for (int k = 0; k < 4; ++k) sim.process_frame(fluid[k], &fluid[k + 1], ignore);
+  const size_t particles = sim.particles().size();
+  // Between steps: neighbour counts, fluid velocities, kernel sums (20 bytes a particle) at least.
+  EXPECT_GE(sim.step_scratch_bytes(), 20 * particles);
+  size_t held_when_handed_out = SIZE_MAX;
+  sim.process_frame(fluid[4], nullptr, [&](const DiffuseFrame&, const FrameStats&) {
+    held_when_handed_out = sim.step_scratch_bytes();
+  });
+  EXPECT_EQ(held_when_handed_out, 0u);
+  for (int k = 4; k < 8; ++k) {
+    DiffuseFrame got;
+    const FluidFrame* next = k + 1 < 8 ? &fluid[k + 1] : nullptr;
+    sim.process_frame(fluid[k], next, [&](const DiffuseFrame& f, const FrameStats&) { got = f; });
+    const DiffuseFrame& want = whole.frames[k];
+    ASSERT_TRUE(same_bytes(got.ids, want.ids)) << k;
+    ASSERT_TRUE(same_bytes(got.positions, want.positions)) << k;
+    ASSERT_TRUE(same_bytes(got.velocities, want.velocities)) << k;
+    ASSERT_TRUE(same_bytes(got.lifetimes, want.lifetimes)) << k;
+    ASSERT_TRUE(same_bytes(got.types, want.types)) << k;
+  }
+}
+
 // The blocks of colliding_blocks(), plus two single-file jets meeting head-on around x = 2 (spacing
 // 0.07 m > h/2 = 0.04 m, so fewer than six fluid particles are ever within h of a point there): air
 // trapped where they meet is released as spray.
