@@ -195,9 +195,11 @@ void place_boundary(Boundary& b, const std::vector<SolidPlacement>& placements, 
   std::span<const uint32_t> order = b.grid.sorted_to_original();
   b.sorted_volume.resize(n);
   b.sorted_solid.resize(n);
+  b.sorted_on_body.resize(n);
   for (size_t k = 0; k < n; ++k) {
     b.sorted_volume[k] = b.volume[order[k]];
     b.sorted_solid[k] = b.solid[order[k]];
+    b.sorted_on_body[k] = placements[b.sorted_solid[k]].body ? 1 : 0;
   }
   set_boundary_velocity(b, placements);
 }

@@ -43,6 +43,7 @@ struct Boundary {
   std::vector<float> sorted_volume;
   std::vector<Vec3f> sorted_velocity;  // m/s
   std::vector<uint32_t> sorted_solid;  // index into the solid set
+  std::vector<uint8_t> sorted_on_body; // 1 where the particle belongs to a dynamic body
   bool any_moving = false;
   float h = 0.0f;  // kernel support, m
 

@@ -130,6 +130,7 @@ void build_neighbourhoods(const NeighbourGrid& grid, const Boundary& boundary, c
   const NeighbourGrid& bgrid = boundary.grid;
   std::span<const Vec3f> bx = bgrid.sorted_points();
   const std::vector<float>& bvol = boundary.sorted_volume;
+  const std::vector<uint8_t>& on_body = boundary.sorted_on_body;
   const size_t cells = grid.occupied_cell_count();
   const size_t tasks = (cells + kCellsPerTask - 1) / kCellsPerTask;
   nb.tasks.resize(tasks);
@@ -143,8 +144,10 @@ void build_neighbourhoods(const NeighbourGrid& grid, const Boundary& boundary, c
   // pairs within h. Pairs go to task-local buffers in particle order and are copied into place below.
   // Density (the SPH sum of [BK17] plus the boundary term of [AIA12]) and the DFSPH factor
   // alpha_i = 1 / (|sum_j V_j grad W_ij|^2 + sum_j |V_j grad W_ij|^2) (the factor of [BK17] divided by
-  // rho_i, as our pressures are p / rho, see pressure.h) come out of the same sweep. Boundary
-  // neighbours enter the first sum only: they do not move in response to particle i's pressure.
+  // rho_i, as our pressures are p / rho, see pressure.h) come out of the same sweep. Static and
+  // kinematic boundary neighbours enter the first sum only: they do not move in response to particle
+  // i's pressure. A dynamic body's do, with the body, so they enter the second sum too: otherwise a
+  // particle between two bodies, whose pulls cancel, gets a factor without bound (MODEL.md §10).
   parallel_for(tasks, 1, [&](size_t tb, size_t te) {
     BlockBuffer block;
     std::vector<float> d2, hit_d2, hit_s, hit_w;
@@ -212,6 +215,7 @@ void build_neighbourhoods(const NeighbourGrid& grid, const Boundary& boundary, c
                 task.boundary_pairs.push_back(Pair{k, g.x(), g.y(), g.z()});
                 bw_sum += bvol[k] * kernel.value(r);
                 g_boundary += g;
+                if (!on_body.empty() && on_body[k]) g2_sum += g.squaredNorm();
               }
           }
           nb.counts[i] = uint32_t(task.pairs.size() - first);
