@@ -191,7 +191,7 @@ void check_blow_up(const BlowUpLimits& limits, const FluidSolverParams& params, 
                      " m/s, above the bound ", limits.max_fall_speed, " m/s = ", kSpeedFactor,
                      " x max(sqrt(2 |g| H) = ", std::sqrt(2.0 * limits.gravity * limits.height),
                      " m/s with H = ", limits.height, " m the height of the box around the fluid and solids",
-                     denser, ", 2 x the fastest solid's ", limits.solid_speed, " m/s, 1 m/s)"),
+                     denser, ", 2 x the fastest kinematic solid's ", limits.solid_speed, " m/s, 1 m/s)"),
                  advice());
   }
 }

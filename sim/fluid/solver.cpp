@@ -121,6 +121,7 @@ void FluidSolver::advance_to(double t, const std::function<void()>& after_step) 
   if (!bodies_.empty()) bodies_.reset(bodies_.poses(), time_);
   const FluidRestartState start = restart_state(0);
   for (int attempt = 0;; ++attempt) {
+    longest_choice_ = 0.0;
     try {
       while (time_ < t) {
         step_to(t);
@@ -128,12 +129,12 @@ void FluidSolver::advance_to(double t, const std::function<void()>& after_step) 
       }
       return;
     } catch (const fluid::BlowUp& e) {
-      const double cap = counters_.step_cap;
+      const double cap = longest_choice_ > 0.0 ? std::min(counters_.step_cap, longest_choice_) : counters_.step_cap;
       if (attempt == kMaxRetries || cap <= params_.min_dt)
         throw fluid::BlowUp(e.what(), attempt ? str(" (taken again ", attempt, attempt == 1 ? " time" : " times",
-                                                     " from t = ", start.time, " s with steps down to ", cap,
-                                                     " s)")
-                                              : std::string());
+                                                     " from t = ", start.time, " s with steps down to ", cap, " s)")
+                                              : str(" (not taken again: its steps were already at fluid.solver.min_dt, ",
+                                                    params_.min_dt, " s)"));
       roll_back(start);
       ++counters_.retries;
       counters_.step_cap = std::max(params_.min_dt, 0.5 * cap);
@@ -199,6 +200,7 @@ double FluidSolver::step_to(double target) {
     const fluid::TimeStepChoice choice =
         fluid::cfl_time_step(params_, p, dt_prev_, solids_, time_, counters_.step_cap, body_speed());
     counters_.dt_clamped_to_min += choice.clamped_to_min ? 1 : 0;
+    longest_choice_ = std::max(longest_choice_, choice.dt);
     dt = fluid::fit_to_remaining(choice.dt, target - time_);
   }
   const double t_end = dt == target - time_ ? target : time_ + dt;

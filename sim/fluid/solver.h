@@ -31,6 +31,7 @@
 // [AIA12] Akinci, Ihmsen, Akinci, Solenthaler, Teschner: Versatile rigid-fluid coupling for
 // incompressible SPH, ACM TOG (SIGGRAPH) 2012. [Mon05] Monaghan: Smoothed particle hydrodynamics,
 // Rep. Prog. Phys. 68, 2005.
+#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
@@ -62,8 +63,9 @@ class FluidSolver {
   // Steps until time() == t exactly (the last steps are fitted to land on t). No-op if t <= time().
   // `after_step`, if given, is called after every step (progress reports). When a step blows up
   // (blow_up.h), the whole stretch is taken again from the state advance_to started from with the
-  // step cap halved, which stays lowered for the rest of the run (stats().retries, .step_cap), up to
-  // kMaxRetries times and never below min_dt; then the last BlowUp is rethrown with what was tried.
+  // step cap set to half the longest step the stretch took (the CFL condition may have kept every
+  // step far below the cap, and halving a cap no step reached retries the same steps). The cap stays lowered for the rest of the run (stats().retries, .step_cap), up
+  // to kMaxRetries times and never below min_dt; then the last BlowUp is rethrown with what was tried.
   // Every decision rests on thread-independent values, so the bytes are too. Dynamic bodies start
   // the stretch afresh from their poses (Bullet's contacts cleared), as a restored solver does.
   void advance_to(double t, const std::function<void()>& after_step = {});
@@ -141,6 +143,7 @@ class FluidSolver {
   fluid::BlowUpLimits limits_;
   double time_ = 0.0;
   double dt_prev_;
+  double longest_choice_ = 0.0;  // the longest step the current stretch chose (before fitting), s
   std::string last_retry_reason_;
   SolverStats stats_;        // what stats() reports beyond counters_: particle counts, stage times
   SolverCounters counters_;  // step to step: behind stats() and carried by restart_state()
