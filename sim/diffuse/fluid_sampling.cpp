@@ -16,6 +16,12 @@ constexpr uint32_t kFilterFrom = 6;
 
 }  // namespace
 
+size_t FluidSamples::bytes() const {
+  auto held = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
+  return held(neighbour_count) + held(fluid_velocity) + held(kernel_sum) + held(cell_order) + held(group_start) +
+         sorter.bytes();
+}
+
 void sample_fluid(const NeighbourGrid& grid, std::span<const Vec3f> sorted_motion, std::span<const Vec3f> positions,
                   FluidSamples& out) {
   const size_t n = positions.size();

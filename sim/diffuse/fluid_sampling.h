@@ -27,6 +27,8 @@ struct FluidSamples {
   // Working buffers kept between calls, so that a step touches no fresh memory.
   std::vector<uint32_t> group_start;
   RadixSorter sorter;
+
+  size_t bytes() const;  // what all of the above hold
 };
 
 // `sorted_motion[j]` is the advecting velocity of the grid's j-th sorted fluid particle.

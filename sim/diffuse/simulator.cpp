@@ -97,7 +97,7 @@ void DiffuseSimulator::classify(const FluidStepState& state, uint32_t step, bool
     });
   }
   StageTimer timer(pending_, Stage::Classify);
-  sample_fluid(grid_, sorted_motion_, particles_.positions, samples_);
+  sample_fluid(grid_, sorted_motion_, particles_.positions, scratch_.samples);
   const DiffuseParams& p = step_params_;
   const SolidSet& solids = solids_at(t, classify_solids_);
   solids_now_ = &solids;
@@ -106,7 +106,7 @@ void DiffuseSimulator::classify(const FluidStepState& state, uint32_t step, bool
   const SolidClearance* clearance = count_solids ? &clearance_of(solids, classify_clearance_) : nullptr;
   parallel_for(particles_.size(), 4096, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
-      float count = samples_.neighbour_count[i];
+      float count = scratch_.samples.neighbour_count[i];
       // Particles born in the previous step have no type yet: no hysteresis for them.
       const bool newborn = diffuse_id_step(particles_.ids[i]) == ((step - 1) & kMaxBirthStep);
       const DiffuseType* previous = newborn ? nullptr : &particles_.types[i];
@@ -124,7 +124,7 @@ void DiffuseSimulator::classify(const FluidStepState& state, uint32_t step, bool
         else
           count = wet_wall_count(count, solid_coverage(solids, x, h, false).fraction);
       }
-      samples_.neighbour_count[i] = count;
+      scratch_.samples.neighbour_count[i] = count;
       particles_.types[i] = spume::classify(count, p, previous);
     }
   });
@@ -141,7 +141,7 @@ void DiffuseSimulator::step(const FluidStepState& state, uint32_t step, float dt
   const SolidClearance& clearance = clearance_of(solids, step_clearance_);
 
   // Advect the existing particles (MODEL.md §4), keep them out of solids, dissolve foam (§5).
-  resize_discarding_in_huge_pages(alive_, old_count);
+  resize_discarding_in_huge_pages(scratch_.alive, old_count);
   std::atomic<uint64_t> dissolved{0}, removed{0}, landed{0};
   {
     StageTimer timer(pending_, Stage::Advect);
@@ -153,7 +153,7 @@ void DiffuseSimulator::step(const FluidStepState& state, uint32_t step, float dt
         Vec3f& v = particles_.velocities[i];
         uint8_t alive = 1;
         // Where no fluid is within h there is no fluid velocity to follow: keep the particle's own.
-        const Vec3f u = samples_.kernel_sum[i] > 0.0f ? samples_.fluid_velocity[i] : v;
+        const Vec3f u = scratch_.samples.kernel_sum[i] > 0.0f ? scratch_.samples.fluid_velocity[i] : v;
         const Vec3f from = x;
         switch (particles_.types[i]) {
           case DiffuseType::Spray: advance_spray(x, v, p.gravity, dt, p.spray_integrator); break;
@@ -170,7 +170,7 @@ void DiffuseSimulator::step(const FluidStepState& state, uint32_t step, float dt
           solids.push_out(x, v, skin);
         }
         if (alive && limit && !setup_.domain.contains(x)) alive = 2;
-        alive_[i] = alive;
+        scratch_.alive[i] = alive;
         dissolved_here += alive == 0, removed_here += alive == 2;
         landed_here += alive == 2 && setup_.ground && x[setup_.ground->up_axis] < setup_.ground->level;
       }
@@ -217,19 +217,19 @@ void DiffuseSimulator::step(const FluidStepState& state, uint32_t step, float dt
   // Compact: survivors in cell order (spatially coherent for the next step), then the newborns.
   StageTimer timer(pending_, Stage::Advect);
   const size_t born = particles_.size() - old_count;
-  resize_discarding_in_huge_pages(order_, particles_.size());
-  const std::vector<uint32_t>& cell_order = samples_.cell_order;
+  resize_discarding_in_huge_pages(scratch_.order, particles_.size());
+  const std::vector<uint32_t>& cell_order = scratch_.samples.cell_order;
   const size_t survivors = parallel_select(
-      old_count, [&](size_t s) { return alive_[cell_order[s]] == 1; },
-      [&](size_t s, size_t k) { order_[k] = cell_order[s]; });
+      old_count, [&](size_t s) { return scratch_.alive[cell_order[s]] == 1; },
+      [&](size_t s, size_t k) { scratch_.order[k] = cell_order[s]; });
   const size_t kept_born = parallel_select(
       born, [&](size_t k) { return !limit || setup_.domain.contains(particles_.positions[old_count + k]); },
-      [&](size_t k, size_t slot) { order_[survivors + slot] = uint32_t(old_count + k); });
+      [&](size_t k, size_t slot) { scratch_.order[survivors + slot] = uint32_t(old_count + k); });
   pending_.removed += born - kept_born;
   // Reordered in place, column by column. The fluid samples' velocities and kernel sums lend their
   // buffers: advection was their last reader, and the next classify() writes them whole.
-  compact(particles_, std::span(order_).first(survivors + kept_born),
-          {samples_.fluid_velocity, samples_.kernel_sum, compaction_ids_, compaction_types_});
+  compact(particles_, std::span(scratch_.order).first(survivors + kept_born),
+          {scratch_.samples.fluid_velocity, scratch_.samples.kernel_sum, scratch_.compaction_ids, scratch_.compaction_types});
 }
 
 FrameStats DiffuseSimulator::process_frame(const FluidFrame& a, const FluidFrame* b,
@@ -286,19 +286,13 @@ FrameStats DiffuseSimulator::simulate_frame(const FluidFrame& a, const FluidFram
   return done;
 }
 
-void DiffuseSimulator::release_step_scratch() {
-  samples_ = FluidSamples{};
-  std::vector<uint8_t>().swap(alive_);
-  std::vector<uint32_t>().swap(order_);
-  std::vector<uint64_t>().swap(compaction_ids_);
-  std::vector<DiffuseType>().swap(compaction_types_);
-}
+void DiffuseSimulator::release_step_scratch() { scratch_ = StepScratch{}; }
 
-size_t DiffuseSimulator::step_scratch_bytes() const {
-  auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
-  return bytes(samples_.neighbour_count) + bytes(samples_.fluid_velocity) + bytes(samples_.kernel_sum) +
-         bytes(samples_.cell_order) + bytes(samples_.group_start) + samples_.sorter.bytes() + bytes(alive_) +
-         bytes(order_) + bytes(compaction_ids_) + bytes(compaction_types_);
+size_t DiffuseSimulator::step_scratch_bytes() const { return scratch_.bytes(); }
+
+size_t DiffuseSimulator::StepScratch::bytes() const {
+  auto held = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
+  return samples.bytes() + held(alive) + held(order) + held(compaction_ids) + held(compaction_types);
 }
 
 }  // namespace spume

@@ -113,13 +113,18 @@ class DiffuseSimulator {
   NeighbourGrid grid_;
   FluidStepState state_;
   std::vector<Vec3f> sorted_motion_;
-  FluidSamples samples_;
+  // The step's working arrays, reused every step (fresh memory costs a page fault per 4 KiB), and
+  // freed as one after a last frame.
+  struct StepScratch {
+    FluidSamples samples;
+    std::vector<uint8_t> alive;  // 1 alive, 0 dissolved, 2 left the domain
+    std::vector<uint32_t> order;
+    std::vector<uint64_t> compaction_ids;      // the old ids after a compaction (compaction.h)
+    std::vector<DiffuseType> compaction_types;  // the old types likewise
+    size_t bytes() const;
+  };
+  StepScratch scratch_;
   FormationPotentials potentials_;
-  // Buffers reused every step (fresh memory costs a page fault per 4 KiB).
-  std::vector<uint8_t> alive_;  // 1 alive, 0 dissolved, 2 left the domain
-  std::vector<uint32_t> order_;
-  std::vector<uint64_t> compaction_ids_;      // the old ids after a compaction (compaction.h)
-  std::vector<DiffuseType> compaction_types_;  // the old types likewise
   EmissionBuffers emission_buffers_;
   SolidSet classify_solids_, step_solids_;
   SolidClearance classify_clearance_, step_clearance_;

@@ -150,7 +150,9 @@ TEST(StabilityBlowUp, OneStepFramesStopTheDamBreakAtFrameSevenRecordingOnlyHealt
   for (const char* part : {"fluid frame 7 (t = 0.2", "blew up", "bound 22.147", "fluid.solver.max_dt (now 1 s)"})
     EXPECT_NE(r.output.find(part), std::string::npos) << part << " not in: " << r.output;
   const std::optional<StageRecord> record = read_stage_record(dir / "out/dambreak/fluid");
-  if (record) EXPECT_LE(record->last_frame, 6);
+  if (record) {
+    EXPECT_LE(record->last_frame, 6);
+  }
   EXPECT_TRUE(fs::exists(dir / "out/dambreak/fluid/fluid_0006.spf"));  // the frames before it were healthy
   EXPECT_FALSE(fs::exists(dir / "out/dambreak/fluid/fluid_0007.spf"));
   EXPECT_FALSE(fs::exists(dir / "out/dambreak/diffuse"));  // nothing downstream ran
