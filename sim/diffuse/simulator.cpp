@@ -229,7 +229,8 @@ void DiffuseSimulator::step(const FluidStepState& state, uint32_t step, float dt
   // Reordered in place, column by column. The fluid samples' velocities and kernel sums lend their
   // buffers: advection was their last reader, and the next classify() writes them whole.
   compact(particles_, std::span(scratch_.order).first(survivors + kept_born),
-          {scratch_.samples.fluid_velocity, scratch_.samples.kernel_sum, scratch_.compaction_ids, scratch_.compaction_types});
+          {scratch_.samples.fluid_velocity, scratch_.samples.kernel_sum, scratch_.compaction_ids,
+           scratch_.compaction_types});
 }
 
 FrameStats DiffuseSimulator::process_frame(const FluidFrame& a, const FluidFrame* b,

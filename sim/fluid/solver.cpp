@@ -129,7 +129,8 @@ void FluidSolver::advance_to(double t, const std::function<void()>& after_step) 
       }
       return;
     } catch (const fluid::BlowUp& e) {
-      const double cap = longest_choice_ > 0.0 ? std::min(counters_.step_cap, longest_choice_) : counters_.step_cap;
+      const double cap =
+          longest_choice_ > 0.0 ? std::min(counters_.step_cap, longest_choice_) : counters_.step_cap;
       if (attempt == kMaxRetries || cap <= params_.min_dt)
         throw fluid::BlowUp(e.what(), attempt ? str(" (taken again ", attempt, attempt == 1 ? " time" : " times",
                                                      " from t = ", start.time, " s with steps down to ", cap, " s)")

@@ -64,8 +64,9 @@ class FluidSolver {
   // `after_step`, if given, is called after every step (progress reports). When a step blows up
   // (blow_up.h), the whole stretch is taken again from the state advance_to started from with the
   // step cap set to half the longest step the stretch took (the CFL condition may have kept every
-  // step far below the cap, and halving a cap no step reached retries the same steps). The cap stays lowered for the rest of the run (stats().retries, .step_cap), up
-  // to kMaxRetries times and never below min_dt; then the last BlowUp is rethrown with what was tried.
+  // step far below the cap, and halving a cap no step reached retries the same steps). The cap stays
+  // lowered for the rest of the run (stats().retries, .step_cap), up to kMaxRetries times and never
+  // below min_dt; then the last BlowUp is rethrown with what was tried.
   // Every decision rests on thread-independent values, so the bytes are too. Dynamic bodies start
   // the stretch afresh from their poses (Bullet's contacts cleared), as a restored solver does.
   void advance_to(double t, const std::function<void()>& after_step = {});
