@@ -48,6 +48,12 @@ void reserve_in_huge_pages(std::vector<T>& v, size_t n) {
   v.swap(grown);
 }
 
+// Bytes an array holds (its capacity, not its size): what freeing it would give back.
+template <typename T>
+size_t held_bytes(const std::vector<T>& v) {
+  return v.capacity() * sizeof(T);
+}
+
 // The capacity a growing array takes: an eighth more than it had, not the doubling std::vector does.
 // The diffuse stage's arrays grow with its particle count a little at a time, frame after frame;
 // doubled, they reserved up to twice what a frame used (tests/bench/RESULTS.md §17.2).

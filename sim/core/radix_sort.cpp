@@ -8,10 +8,8 @@
 namespace spume {
 
 size_t RadixSorter::bytes() const {
-  size_t total = 0;
-  for (const std::vector<uint32_t>* v : {&order_, &keys_, &order_scratch_, &key_scratch_, &offsets_})
-    total += v->capacity() * sizeof(uint32_t);
-  return total;
+  return held_bytes(order_) + held_bytes(keys_) + held_bytes(order_scratch_) + held_bytes(key_scratch_) +
+         held_bytes(offsets_);
 }
 
 void RadixSorter::sort_input_keys(int key_bits) { sort(keys_, key_bits); }

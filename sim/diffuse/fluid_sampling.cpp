@@ -17,9 +17,8 @@ constexpr uint32_t kFilterFrom = 6;
 }  // namespace
 
 size_t FluidSamples::bytes() const {
-  auto held = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
-  return held(neighbour_count) + held(fluid_velocity) + held(kernel_sum) + held(cell_order) + held(group_start) +
-         sorter.bytes();
+  return held_bytes(neighbour_count) + held_bytes(fluid_velocity) + held_bytes(kernel_sum) + held_bytes(cell_order) +
+         held_bytes(group_start) + sorter.bytes();
 }
 
 void sample_fluid(const NeighbourGrid& grid, std::span<const Vec3f> sorted_motion, std::span<const Vec3f> positions,

@@ -292,8 +292,8 @@ void DiffuseSimulator::release_step_scratch() { scratch_ = StepScratch{}; }
 size_t DiffuseSimulator::step_scratch_bytes() const { return scratch_.bytes(); }
 
 size_t DiffuseSimulator::StepScratch::bytes() const {
-  auto held = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
-  return samples.bytes() + held(alive) + held(order) + held(compaction_ids) + held(compaction_types);
+  return samples.bytes() + held_bytes(alive) + held_bytes(order) + held_bytes(compaction_ids) +
+         held_bytes(compaction_types);
 }
 
 }  // namespace spume

@@ -215,7 +215,7 @@ void build_neighbourhoods(const NeighbourGrid& grid, const Boundary& boundary, c
                 task.boundary_pairs.push_back(Pair{k, g.x(), g.y(), g.z()});
                 bw_sum += bvol[k] * kernel.value(r);
                 g_boundary += g;
-                if (!on_body.empty() && on_body[k]) g2_sum += g.squaredNorm();
+                if (on_body[k]) g2_sum += g.squaredNorm();
               }
           }
           nb.counts[i] = uint32_t(task.pairs.size() - first);
